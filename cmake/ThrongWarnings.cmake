@@ -1,0 +1,10 @@
+# Compiler warnings and sanitizers for throng's own targets (third-party headers are SYSTEM and stay quiet).
+add_library(throng_warnings INTERFACE)
+target_compile_options(throng_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual -Wnull-dereference
+  $<$<BOOL:${THRONG_WERROR}>:-Werror>)
+
+if(THRONG_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,43 @@
+#include "test_paths.h"
+
+#include <array>
+#include <cstdio>
+#include <sys/wait.h>
+
+namespace throng::test {
+
+std::filesystem::path source_dir() { return THRONG_SOURCE_DIR; }
+std::filesystem::path build_dir() { return THRONG_BINARY_DIR; }
+std::filesystem::path throng_program() { return build_dir() / "drivers" / "throng"; }
+
+std::filesystem::path real_data_dir() {
+  const auto dir = source_dir().parent_path() / "shared" / "data" / "real";
+  return std::filesystem::is_directory(dir) ? dir : std::filesystem::path{};
+}
+
+std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = build_dir() / "test-scratch" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string system_python() {
+  const std::string p = THRONG_SYSTEM_PYTHON;
+  return (!p.empty() && std::filesystem::exists(p)) ? p : std::string{};
+}
+
+std::string mpiexec() { return THRONG_MPIEXEC; }
+
+int run_command(const std::string& command, std::string* output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buffer{};
+  std::string text;
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) text += buffer.data();
+  const int status = pclose(pipe);
+  if (output) *output = text;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+}  // namespace throng::test
