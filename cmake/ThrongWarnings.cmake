@@ -1,7 +1,7 @@
 # Compiler warnings and sanitizers for throng's own targets (third-party headers are SYSTEM and stay quiet).
 add_library(throng_warnings INTERFACE)
 target_compile_options(throng_warnings INTERFACE
-  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual -Wnull-dereference
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual
   $<$<BOOL:${THRONG_WERROR}>:-Werror>)
 
 if(THRONG_SANITIZE)
