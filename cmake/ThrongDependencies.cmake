@@ -10,6 +10,7 @@ find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(pugixml REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
 find_package(MPI REQUIRED COMPONENTS C)
 
 # HDF5: the OpenMPI build, the same library PETSc links, so one process never loads two HDF5 libraries.

@@ -1,0 +1,13 @@
+// One factory per subcommand, each defined in its own file in this folder.
+#pragma once
+
+#include "../command.h"
+
+namespace throng::cli {
+
+std::unique_ptr<Command> make_import_command();
+std::unique_ptr<Command> make_export_command();
+std::unique_ptr<Command> make_info_command();
+std::unique_ptr<Command> make_plot_command();
+
+}  // namespace throng::cli

@@ -1,0 +1,76 @@
+// throng import DATASET -o OUT.h5: recorded trajectories (an ETH/UCY dataset folder or obsmat.txt, or a
+// time,id,x,y,z CSV table) become a crowd file.
+#include "factories.h"
+
+#include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
+#include <throng/io/csv.h>
+#include <throng/io/real_dataset.h>
+
+#include <set>
+
+namespace throng::cli {
+namespace {
+
+class ImportCommand final : public Command {
+ public:
+  std::string name() const override { return "import"; }
+  std::string summary() const override {
+    return "Turn recorded trajectories (ETH/UCY folder with obsmat.txt, map.xml, groups.txt; or a CSV table) into a crowd file";
+  }
+
+  void setup(CLI::App& app) override {
+    app.add_option("dataset", input_, "Dataset folder, its obsmat.txt, or a time,id,x,y,z .csv file")->required();
+    app.add_option("-o,--output", output_, "Crowd file to write (.h5)")->required();
+    app.add_option("--fps", options_.video_fps, "Video frame rate of obsmat frame numbers (default: known per dataset)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--radius", options_.agent_radius, "Agent radius in metres")->capture_default_str()->check(CLI::NonNegativeNumber);
+    app.add_option("--wall-thickness", options_.wall_thickness, "Thickness of map.xml walls in metres")
+        ->capture_default_str()->check(CLI::NonNegativeNumber);
+  }
+
+  void run(Context& context) override {
+    YAML::Node effective;
+    effective["dataset"] = input_.string();
+    effective["fps"] = options_.video_fps;
+    effective["radius"] = options_.agent_radius;
+    effective["wall_thickness"] = options_.wall_thickness;
+    if (context.print_config_if_asked(effective)) return;
+    check_distinct(input_, output_);
+
+    CrowdFile file;
+    if (input_.extension() == ".csv") {
+      file.motion = read_csv(input_, options_.agent_radius);
+      file.provenance.inputs.push_back(input_.string());
+    } else {
+      file = import_real_dataset(input_, options_);
+    }
+    const Provenance source = file.provenance;
+    file.provenance = context.provenance(effective, {input_.string()}, {&source});
+    write_crowd_file(output_, file);
+
+    const CrowdMotion& m = file.motion;
+    std::set<std::int32_t> groups(m.species.begin(), m.species.end());
+    groups.erase(0);
+    Report r;
+    r["output"] = output_.string();
+    r["agents"] = m.agent_count();
+    r["frames"] = m.frame_count();
+    r["duration_s"] = m.frame_count() ? m.times.back() - m.times.front() : 0.0;
+    r["walking_groups"] = groups.size();
+    r["obstacles"] = file.scene.obstacles.size();
+    if (!file.provenance.credits.empty()) r["credit"] = file.provenance.credits;
+    context.print(r);
+  }
+
+ private:
+  std::filesystem::path input_;
+  std::filesystem::path output_;
+  RealDatasetOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_import_command() { return std::make_unique<ImportCommand>(); }
+
+}  // namespace throng::cli

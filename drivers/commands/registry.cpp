@@ -1,0 +1,16 @@
+// The list of subcommands. Adding one: a file in commands/, one line here, one line in drivers/CMakeLists.txt.
+#include "../command.h"
+#include "factories.h"
+
+namespace throng::cli {
+
+std::vector<std::unique_ptr<Command>> all_commands() {
+  std::vector<std::unique_ptr<Command>> c;
+  c.push_back(make_import_command());
+  c.push_back(make_export_command());
+  c.push_back(make_info_command());
+  c.push_back(make_plot_command());
+  return c;
+}
+
+}  // namespace throng::cli

@@ -1,0 +1,124 @@
+#include "context.h"
+
+#include "progress_reporter.h"
+
+#include <throng/core/errors.h>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <iostream>
+#include <unistd.h>
+
+#ifndef THRONG_VERSION
+#define THRONG_VERSION "0.0.0"
+#endif
+
+namespace throng::cli {
+namespace {
+
+std::string shell_quote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./=:,+@%") == std::string::npos) {
+    return s;
+  }
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') out += "'\\''";
+    else out += c;
+  }
+  return out + "'";
+}
+
+// "key: value" lines for a human; nested objects indent, arrays of scalars stay on one line.
+void print_human(const Report& value, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    const Report& v = it.value();
+    if (v.is_object()) {
+      std::cout << pad << it.key() << ":\n";
+      print_human(v, indent + 2);
+    } else if (v.is_array() && !v.empty() && v.front().is_object()) {
+      std::cout << pad << it.key() << ":\n";
+      for (const auto& e : v) {
+        std::cout << pad << "  -\n";
+        print_human(e, indent + 4);
+      }
+    } else if (v.is_string()) {
+      std::cout << pad << it.key() << ": " << v.get<std::string>() << "\n";
+    } else {
+      std::cout << pad << it.key() << ": " << v.dump() << "\n";
+    }
+  }
+}
+
+}  // namespace
+
+Context::Context(int argc, char** argv) {
+  for (int i = 0; i < argc; ++i) command_line_ += (i ? " " : "") + shell_quote(argv[i]);
+}
+
+Context::~Context() = default;
+
+Progress& Context::progress() {
+  if (!progress_) {
+    if (global.quiet) progress_ = std::make_unique<NoProgress>();
+    else progress_ = std::make_unique<ProgressReporter>(::isatty(STDERR_FILENO) != 0);
+  }
+  return *progress_;
+}
+
+void Context::limit_threads() {
+  if (!threads_) threads_ = std::make_unique<ThreadLimit>(global.threads);
+}
+
+ConfigNode Context::load_job(const std::filesystem::path& path) const {
+  ConfigNode job = ConfigNode::load_file(path);
+  if (global.set.empty()) return job;
+  YAML::Node root = job.yaml();
+  if (root.IsNull() || !root.IsDefined()) root = YAML::Node(YAML::NodeType::Map);
+  apply_overrides(root, global.set);
+  return ConfigNode(root, path.string());
+}
+
+Provenance Context::provenance(const YAML::Node& effective_options, const std::vector<std::string>& inputs,
+                               const std::vector<const Provenance*>& sources) const {
+  Provenance p;
+  p.program_version = THRONG_VERSION;
+  p.command_line = command_line_;
+  p.options = to_yaml_text(effective_options);
+  p.seed = global.seed;
+  p.inputs = inputs;
+  for (const Provenance* s : sources) {
+    for (const auto& c : s->credits) {
+      if (std::find(p.credits.begin(), p.credits.end(), c) == p.credits.end()) p.credits.push_back(c);
+    }
+  }
+  return p;
+}
+
+bool Context::print_config_if_asked(const YAML::Node& effective_options) const {
+  if (!global.print_config) return false;
+  std::cout << to_yaml_text(effective_options);
+  return true;
+}
+
+void Context::print(const Report& report) const {
+  if (global.json) std::cout << report.dump(2) << "\n";
+  else print_human(report, 0);
+  std::cout.flush();
+}
+
+spdlog::logger& Context::log() const {
+  if (!logger_) {
+    logger_ = spdlog::stderr_color_st("throng");
+    logger_->set_pattern("%^%l%$: %v");
+    logger_->set_level(global.quiet ? spdlog::level::warn : spdlog::level::info);
+  }
+  return *logger_;
+}
+
+void Context::info(const std::string& message) const { log().info(message); }
+void Context::warn(const std::string& message) const { log().warn(message); }
+
+}  // namespace throng::cli

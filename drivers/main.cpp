@@ -1,0 +1,71 @@
+// The `throng` program: parses the command line, runs one subcommand, and maps every error to its exit code in
+// this one place (README "Exit codes"): 0 success, 2 usage or config, 3 invalid input data, 4 I/O,
+// 5 solver did not converge or could not meet a constraint, 70 internal error, 130/143 interrupted.
+#include "command.h"
+#include "context.h"
+
+#include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
+
+#include <CLI/CLI.hpp>
+#include <yaml-cpp/exceptions.h>
+
+#include <cstdio>
+#include <map>
+#include <new>
+
+#ifndef THRONG_VERSION
+#define THRONG_VERSION "0.0.0"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace throng;
+  install_interrupt_cleanup();
+
+  cli::Context context(argc, argv);
+  CLI::App app{"throng " THRONG_VERSION " — solver backend for crowd animation.\n"
+               "Reads crowd datasets (HDF5, H5MD layout), runs the methods, writes HDF5 that other tools read.",
+               "throng"};
+  app.set_version_flag("--version", "throng " THRONG_VERSION);
+  app.require_subcommand(1, 1);
+  app.fallthrough();
+  auto& g = context.global;
+  app.add_option("--threads", g.threads, "Worker threads (0: all hardware threads)")->check(CLI::NonNegativeNumber);
+  app.add_option("--seed", g.seed, "Random seed, written to the output (same seed, same bits)");
+  app.add_flag("--quiet,-q", g.quiet, "No progress or information on stderr, only warnings and errors");
+  app.add_flag("--json", g.json, "Reports on stdout as JSON");
+  app.add_flag("--print-config", g.print_config, "Print the effective options as YAML and stop");
+  app.add_option("--set", g.set, "Override a job option: key.path=value (repeatable)");
+
+  std::vector<std::unique_ptr<cli::Command>> commands = cli::all_commands();
+  std::map<CLI::App*, cli::Command*> by_app;
+  for (auto& c : commands) {
+    CLI::App* sub = app.add_subcommand(c->name(), c->summary());
+    c->setup(*sub);
+    by_app[sub] = c.get();
+  }
+
+  std::string which = "throng";
+  try {
+    app.parse(argc, argv);
+    CLI::App* chosen = app.get_subcommands().front();
+    which += " " + chosen->get_name();
+    by_app.at(chosen)->run(context);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : static_cast<int>(ExitCode::usage);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", which.c_str(), e.what());
+    return static_cast<int>(e.exit_code());
+  } catch (const YAML::Exception& e) {
+    std::fprintf(stderr, "%s: error: in a job file: %s\n", which.c_str(), e.what());
+    return static_cast<int>(ExitCode::usage);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: error: out of memory\n", which.c_str());
+    return static_cast<int>(ExitCode::internal);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", which.c_str(), e.what());
+    return static_cast<int>(ExitCode::internal);
+  }
+}

@@ -1,0 +1,71 @@
+// The crowd dataset file: H5MD 1.1-compatible HDF5, so existing readers (h5py, MDAnalysis, ParaView through an
+// XDMF sidecar) open it, with throng's own data under /parameters/throng.
+//
+//   /h5md                              version = [1, 1]; author/name; creator/name, creator/version
+//   /h5md/modules/units                version = [1, 0], system = "SI"
+//   /particles/trajectory/box          dimension = 3, boundary = ["none"|"periodic" ×3]; edges [3] when periodic
+//   /particles/trajectory/position     step int64[T], time float64[T] (unit "s"), value float64[T][N][3]
+//                                      (metres; no unit attribute: MDAnalysis rejects "m"); NaN where absent
+//   /particles/trajectory/velocity     optional; step/time hard links; value float64[T][N][3]
+//   /particles/trajectory/id           step/time hard links; value int64[T][N], −1 where absent
+//   /particles/trajectory/species      int32[N]
+//   /connectivity/formation_edges      optional int32[E][2] agent indices; attribute particles_group
+//   /parameters/throng                 attributes format_version (= 1), program, program_version, command_line,
+//                                      seed, options (YAML text of the run's effective options), inputs,
+//                                      credits (authors of real data the file derives from)
+//   /parameters/throng/agents          id int64[N], radius float64[N]
+//   /parameters/throng/scene           obstacles and region (see crowd_file.cpp for the layout)
+//   /parameters/throng/<method>        method data: strokes, keyframes, patches, tilings, time warps ...
+//
+// Large datasets are chunked by frames and compressed (shuffle + deflate). Files are written atomically.
+#pragma once
+
+#include <throng/core/crowd_motion.h>
+#include <throng/core/scene.h>
+#include <throng/io/hdf5.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace throng {
+
+/// The format version this program writes and reads.
+inline constexpr std::int64_t crowd_format_version = 1;
+
+/// What made a file: recorded in every output, shown by `throng info`.
+struct Provenance {
+  std::string program_version;        ///< "0.1.0"
+  std::string command_line;           ///< the full command line of the run
+  std::string options;                ///< YAML text of the run's effective options (what --print-config shows)
+  std::uint64_t seed = 0;
+  std::vector<std::string> inputs;    ///< input files (names as given) or data sources
+  std::vector<std::string> credits;   ///< authors of data the file derives from; carried through every method
+};
+
+struct CrowdFile {
+  CrowdMotion motion;
+  Scene scene;
+  std::vector<std::array<std::int32_t, 2>> formation_edges;  ///< optional, agent index pairs
+  Provenance provenance;
+};
+
+/// Adds method data under /parameters/throng (the group is passed in) before the file is closed and moved into place.
+using ExtraWriter = std::function<void(const h5::Group& throng_parameters)>;
+
+/// Validates `file` (InputError), then writes it atomically to `path` (IoError on failure; nothing is left behind).
+void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra = {});
+
+/// Reads and validates a crowd file. Throws IoError (missing or unreadable file) or InputError naming the dataset
+/// and the problem: not HDF5, truncated, missing dataset, wrong rank or shape, NaN for a present agent, times not
+/// increasing, an id that changes within a column, unknown format version. H5MD files from other programs (no
+/// /parameters/throng) are accepted: ids from id/value (or 0..N-1), radius 0.25 m, no scene.
+[[nodiscard]] CrowdFile read_crowd_file(const std::filesystem::path& path);
+
+/// Opens a crowd file's /parameters/throng group for method data, with `h5::File` kept alive by the caller.
+[[nodiscard]] h5::Group open_throng_parameters(const h5::File& file);
+
+}  // namespace throng

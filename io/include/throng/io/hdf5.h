@@ -1,0 +1,124 @@
+// A thin RAII layer over HDF5's C API: handles that close themselves, typed whole-dataset reads and writes with
+// shape checks, and string/number attributes. Every failure throws IoError or InputError naming the file and the
+// object path, never an HDF5 error stack on stderr.
+//
+// Objects are created without modification times, so the same data gives the same file bytes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace throng::h5 {
+
+/// HDF5 object identifier (hid_t is int64_t in HDF5 ≥ 1.10).
+using Id = std::int64_t;
+
+/// Owns one HDF5 identifier and closes it (file, group, dataset, dataspace, type, property list).
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(Id id) noexcept : id_(id) {}
+  Handle(Handle&& other) noexcept : id_(other.id_) { other.id_ = -1; }
+  Handle& operator=(Handle&& other) noexcept;
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle();
+
+  [[nodiscard]] Id id() const noexcept { return id_; }
+  [[nodiscard]] bool valid() const noexcept { return id_ >= 0; }
+
+ private:
+  Id id_ = -1;
+};
+
+/// A dataset's contents and shape (row-major).
+template <class T>
+struct Array {
+  std::vector<T> values;
+  std::vector<std::uint64_t> shape;
+};
+
+/// Layout of a new dataset: compressed datasets are chunked along their first axis.
+struct Layout {
+  bool compress = false;             ///< shuffle + deflate
+  std::uint64_t chunk_rows = 0;      ///< rows of the first axis per chunk; 0 = choose (~256 KiB chunks)
+};
+
+/// A group (or the file's root group) of an open file; knows the file name and its own path for messages.
+class Group {
+ public:
+  Group(Handle handle, std::string file, std::string path) : handle_(std::move(handle)), file_(std::move(file)), path_(std::move(path)) {}
+
+  [[nodiscard]] Id id() const noexcept { return handle_.id(); }
+  [[nodiscard]] const std::string& path() const noexcept { return path_; }
+  [[nodiscard]] const std::string& file() const noexcept { return file_; }
+  /// "file.h5:/particles/trajectory/name", for messages.
+  [[nodiscard]] std::string where(const std::string& name = {}) const;
+
+  [[nodiscard]] bool has(const std::string& name) const;
+  [[nodiscard]] Group create_group(const std::string& name) const;
+  /// Opens a subgroup; throws InputError "missing group" when absent.
+  [[nodiscard]] Group open_group(const std::string& name) const;
+
+  void write(const std::string& name, const std::vector<double>& values, const std::vector<std::uint64_t>& shape, Layout layout = {}) const;
+  void write(const std::string& name, const std::vector<std::int64_t>& values, const std::vector<std::uint64_t>& shape, Layout layout = {}) const;
+  void write(const std::string& name, const std::vector<std::int32_t>& values, const std::vector<std::uint64_t>& shape, Layout layout = {}) const;
+  void write(const std::string& name, const std::vector<std::string>& values) const;  ///< 1-D variable-length UTF-8 strings
+  void write_scalar(const std::string& name, const std::string& value) const;          ///< scalar variable-length string
+
+  /// Whole-dataset reads converting to the requested type (HDF5 converts numeric types). `expected_rank` ≥ 0 checks
+  /// the rank; throws InputError "missing dataset" / "has rank r, expected k" naming the dataset.
+  [[nodiscard]] Array<double> read_doubles(const std::string& name, int expected_rank = -1) const;
+  [[nodiscard]] Array<std::int64_t> read_int64(const std::string& name, int expected_rank = -1) const;
+  [[nodiscard]] Array<std::int32_t> read_int32(const std::string& name, int expected_rank = -1) const;
+  [[nodiscard]] std::vector<std::string> read_strings(const std::string& name) const;
+  [[nodiscard]] std::string read_scalar_string(const std::string& name) const;
+
+  /// Hard link `target` (a path in this file) under `name` (H5MD shares step/time datasets between elements).
+  void link(const std::string& name, const std::string& target) const;
+
+  // Attributes on this group.
+  void set_attribute(const std::string& name, const std::string& value) const;
+  void set_attribute(const std::string& name, const std::vector<std::string>& values) const;
+  void set_attribute(const std::string& name, const std::vector<std::int32_t>& values) const;
+  void set_attribute(const std::string& name, std::int64_t value) const;
+  void set_attribute(const std::string& name, double value) const;
+  [[nodiscard]] bool has_attribute(const std::string& name) const;
+  [[nodiscard]] std::optional<std::string> string_attribute(const std::string& name) const;  ///< first if an array
+  [[nodiscard]] std::vector<std::string> string_array_attribute(const std::string& name) const;  ///< empty if absent
+  [[nodiscard]] std::vector<std::int64_t> int_attribute(const std::string& name) const;  ///< scalar or 1-D
+  [[nodiscard]] std::optional<double> double_attribute(const std::string& name) const;
+
+  /// Attributes on a dataset or group below this one.
+  void set_attribute_on(const std::string& object, const std::string& name, const std::string& value) const;
+  /// Object reference attribute on `object` pointing to `target` (H5MD's connectivity "particles_group").
+  void set_reference_attribute_on(const std::string& object, const std::string& name, const std::string& target) const;
+
+ private:
+  Handle handle_;
+  std::string file_;
+  std::string path_;
+};
+
+/// An HDF5 file, open for reading or newly created for writing.
+class File {
+ public:
+  /// Creates (truncating) `path` for writing. Throws IoError.
+  static File create(const std::filesystem::path& path);
+  /// Opens an existing file read-only. Throws IoError (missing, unreadable) or InputError (not HDF5, truncated).
+  static File open(const std::filesystem::path& path);
+
+  [[nodiscard]] Group root() const;
+  /// Flushes and closes; throws IoError if HDF5 reports a failure (a full disk shows here).
+  void close();
+
+ private:
+  File(Handle handle, std::string name) : handle_(std::move(handle)), name_(std::move(name)) {}
+  Handle handle_;
+  std::string name_;
+};
+
+}  // namespace throng::h5

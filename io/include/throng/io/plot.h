@@ -1,0 +1,45 @@
+// Pictures of crowds: SVG (and PNG through Debian's rsvg-convert) of trajectories, obstacles and agents at chosen
+// frames, coloured by group, with a scale bar, a title and a legend — a picture a person looks at instead of
+// reading numbers. Several crowds can be drawn over each other (before/after an edit).
+#pragma once
+
+#include <throng/io/crowd_file.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace throng {
+
+/// One crowd to draw.
+struct PlotLayer {
+  const CrowdFile* file = nullptr;
+  std::string label;                   ///< legend text ("before", "after", a file name)
+  std::optional<std::string> colour;   ///< one CSS colour for the whole layer; none: colour by species
+  double opacity = 0.85;
+  bool dashed = false;
+  bool draw_agents = true;             ///< discs at the chosen frames
+};
+
+struct PlotOptions {
+  /// Frames at which agents are drawn as discs of their radius; negative counts from the end (−1 = last).
+  std::vector<long> frames{0, -1};
+  double width_px = 1200;              ///< picture width; the height follows the scene's aspect ratio
+  bool trajectories = true;
+  bool obstacles = true;
+  std::string title;                   ///< empty: none
+};
+
+/// Writes the picture of `layers` (drawn in order, the first underneath) to `path`; the format follows the
+/// extension: .svg, or .png (rendered by rsvg-convert from librsvg2-bin; IoError if it is missing). Written
+/// atomically. ConfigError for an unknown extension or a frame outside every layer.
+void write_plot(const std::filesystem::path& path, const std::vector<PlotLayer>& layers, const PlotOptions& options);
+
+/// A colour for a species or group index (a fixed palette of 12 distinguishable colours, cycled).
+[[nodiscard]] std::string group_colour(std::int64_t index);
+
+/// Runs a program (no shell) and waits; returns its exit status, or −1 if it could not be started.
+int run_program(const std::vector<std::string>& argv);
+
+}  // namespace throng

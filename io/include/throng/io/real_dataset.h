@@ -1,0 +1,39 @@
+// Importer for the recorded pedestrian datasets in ../shared/data/real (ETH/BIWI and UCY "Crowds by Example",
+// as collected and converted to metres by the OpenTraj project):
+//   obsmat.txt   rows "frame id x z y vx vz vy" (metres, m/s; the z columns are 0: the ground plane is x–y)
+//   map.xml      OpenTraj's obstacles: <Line x1 y1 x2 y2> wall segments, <Circle x y radius> pillars (optional)
+//   groups.txt   one walking group per line, as agent ids (optional)
+//
+// Frames: the annotated video frames lie on a regular grid (every 6th frame for eth, every 10th for the others);
+// the crowd gets one frame per grid point from the first to the last annotated frame, at time = frame / video fps,
+// so frames where nobody was annotated are kept (all agents absent) and time stays uniform. Agents are present
+// exactly where annotated. Velocities are the annotators' estimates, kept as the velocity element.
+// Species: agents of the k-th walking group get species k (1-based); agents in no group get 0.
+// Walls: map.xml's "thickness" attribute is a drawing width in pixels, not metres, so walls get
+// `wall_thickness` instead.
+#pragma once
+
+#include <throng/io/crowd_file.h>
+
+#include <filesystem>
+#include <string>
+
+namespace throng {
+
+struct RealDatasetOptions {
+  double video_fps = 0.0;        ///< frames per second of the source video; 0: known value for the dataset folder
+  double agent_radius = 0.25;    ///< metres, for every agent
+  double wall_thickness = 0.1;   ///< metres, total width of map.xml's wall segments
+};
+
+/// Reads a dataset folder (or its obsmat.txt). Throws IoError (missing files), InputError naming file and line
+/// (malformed rows, NaN, an id repeated in one frame, a malformed map.xml), ConfigError (unknown frame rate).
+[[nodiscard]] CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options);
+
+/// The video frame rate of a known dataset folder name (eth 15; hotel, zara01, zara02, univ, students* 25), or 0.
+[[nodiscard]] double known_video_fps(const std::string& folder_name);
+
+/// The credit line for a known dataset folder (ETH/BIWI or UCY), as the data's README asks; empty if unknown.
+[[nodiscard]] std::string dataset_credit(const std::string& folder_name);
+
+}  // namespace throng

@@ -1,0 +1,202 @@
+#include <throng/core/errors.h>
+#include <throng/io/real_dataset.h>
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace throng {
+namespace {
+
+struct Row {
+  std::int64_t frame;
+  std::int64_t id;
+  double x, y, vx, vy;
+};
+
+std::vector<Row> read_obsmat(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(path.string() + ": cannot be opened for reading");
+  std::vector<Row> rows;
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::istringstream fields(line);
+    double v[8];
+    for (int i = 0; i < 8; ++i) {
+      if (!(fields >> v[i])) {
+        throw InputError(path.string() + ":" + std::to_string(number) + ": expected 8 numbers (frame id x z y vx vz vy)");
+      }
+    }
+    for (double x : v) {
+      if (!std::isfinite(x)) throw InputError(path.string() + ":" + std::to_string(number) + ": a value is not finite");
+    }
+    if (v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] < 0 || v[1] < 0) {
+      throw InputError(path.string() + ":" + std::to_string(number) + ": frame and id must be non-negative integers");
+    }
+    rows.push_back({static_cast<std::int64_t>(v[0]), static_cast<std::int64_t>(v[1]), v[2], v[4], v[5], v[7]});
+  }
+  if (rows.empty()) throw InputError(path.string() + ": no trajectory rows");
+  return rows;
+}
+
+std::vector<std::vector<std::int64_t>> read_groups(const std::filesystem::path& path) {
+  std::vector<std::vector<std::int64_t>> groups;
+  std::ifstream in(path);
+  if (!in) throw IoError(path.string() + ": cannot be opened for reading");
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream fields(line);
+    std::vector<std::int64_t> group;
+    std::string token;
+    while (fields >> token) {
+      try {
+        std::size_t used = 0;
+        const long long id = std::stoll(token, &used);
+        if (used != token.size()) throw std::invalid_argument(token);
+        group.push_back(id);
+      } catch (const std::exception&) {
+        throw InputError(path.string() + ":" + std::to_string(number) + ": '" + token + "' is not an agent id");
+      }
+    }
+    if (!group.empty()) groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+double attribute(const pugi::xml_node& n, const char* name, const std::filesystem::path& path) {
+  const pugi::xml_attribute a = n.attribute(name);
+  if (!a) throw InputError(path.string() + ": <" + std::string(n.name()) + "> at offset " + std::to_string(n.offset_debug()) + " has no " + name);
+  const double v = a.as_double(std::nan(""));
+  if (!std::isfinite(v)) throw InputError(path.string() + ": <" + std::string(n.name()) + "> attribute " + name + " is not a number");
+  return v;
+}
+
+Scene read_map(const std::filesystem::path& path, double wall_thickness) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result result = doc.load_file(path.c_str());
+  if (!result) {
+    throw InputError(path.string() + ": not valid XML (" + std::string(result.description()) + " at offset " +
+                     std::to_string(result.offset) + ")");
+  }
+  Scene scene;
+  int walls = 0, pillars = 0;
+  for (const auto& x : doc.select_nodes("//Line")) {
+    const pugi::xml_node n = x.node();
+    Wall w{{attribute(n, "x1", path), attribute(n, "y1", path)}, {attribute(n, "x2", path), attribute(n, "y2", path)}, wall_thickness};
+    scene.obstacles.push_back({w, {}, "wall " + std::to_string(++walls)});
+  }
+  for (const auto& x : doc.select_nodes("//Circle")) {
+    const pugi::xml_node n = x.node();
+    Circle c{{attribute(n, "x", path), attribute(n, "y", path)}, attribute(n, "radius", path)};
+    scene.obstacles.push_back({c, {}, "pillar " + std::to_string(++pillars)});
+  }
+  scene.validate(path.string());
+  return scene;
+}
+
+}  // namespace
+
+double known_video_fps(const std::string& folder_name) {
+  if (folder_name == "eth") return 15.0;
+  for (const char* name : {"hotel", "zara01", "zara02", "zara03", "univ", "students"}) {
+    if (folder_name.rfind(name, 0) == 0 || folder_name.find(std::string("_") + name) != std::string::npos) return 25.0;
+  }
+  return 0.0;
+}
+
+std::string dataset_credit(const std::string& folder_name) {
+  const std::string opentraj = " Collected and converted to metres by the OpenTraj project (crowdbotp/OpenTraj).";
+  if (folder_name == "eth" || folder_name == "hotel") {
+    return "ETH/BIWI Walking Pedestrians: S. Pellegrini, A. Ess, K. Schindler, L. Van Gool, \"You'll never walk alone: "
+           "modeling social behavior for multi-target tracking\", ICCV 2009." + opentraj;
+  }
+  if (known_video_fps(folder_name) == 0.0) return {};
+  return "UCY Crowds by Example: A. Lerner, Y. Chrysanthou, D. Lischinski, \"Crowds by example\", Computer Graphics "
+         "Forum 26(3), 2007." + opentraj;
+}
+
+CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options) {
+  std::error_code ec;
+  const bool is_folder = std::filesystem::is_directory(folder_or_obsmat, ec);
+  const std::filesystem::path folder = is_folder ? folder_or_obsmat : folder_or_obsmat.parent_path();
+  const std::filesystem::path obsmat = is_folder ? folder / "obsmat.txt" : folder_or_obsmat;
+  if (!std::filesystem::exists(obsmat, ec)) throw IoError(obsmat.string() + ": no such file (expected a dataset folder holding obsmat.txt)");
+  const std::string name = std::filesystem::absolute(folder).lexically_normal().filename().string();
+
+  double fps = options.video_fps;
+  if (fps == 0.0) fps = known_video_fps(name);
+  if (!(fps > 0.0) || !std::isfinite(fps)) {
+    throw ConfigError("cannot tell the video frame rate of dataset folder '" + name + "': give it with --fps");
+  }
+  if (!(options.agent_radius >= 0) || !(options.wall_thickness >= 0)) throw ConfigError("radius and wall thickness must be ≥ 0");
+
+  const std::vector<Row> rows = read_obsmat(obsmat);
+
+  // The frame grid: from the first to the last annotated frame in steps of the gcd of the gaps.
+  std::vector<std::int64_t> frames;
+  for (const Row& r : rows) frames.push_back(r.frame);
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  std::int64_t step = 0;
+  for (std::size_t i = 1; i < frames.size(); ++i) step = std::gcd(step, frames[i] - frames[i - 1]);
+  if (step == 0) step = 1;
+  const std::int64_t first = frames.front();
+  const std::size_t T = static_cast<std::size_t>((frames.back() - first) / step) + 1;
+
+  std::vector<std::int64_t> ids;
+  for (const Row& r : rows) ids.push_back(r.id);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::unordered_map<std::int64_t, std::size_t> column;
+  for (std::size_t n = 0; n < ids.size(); ++n) column[ids[n]] = n;
+  const std::size_t N = ids.size();
+
+  CrowdFile out;
+  CrowdMotion& m = out.motion;
+  m = CrowdMotion::with_shape(T, N, options.agent_radius);
+  m.ids = ids;
+  m.velocities.assign(m.positions.size(), absent);
+  for (std::size_t t = 0; t < T; ++t) m.times[t] = static_cast<double>(first + static_cast<std::int64_t>(t) * step) / fps;
+  for (const Row& r : rows) {
+    const std::size_t t = static_cast<std::size_t>((r.frame - first) / step);
+    const std::size_t n = column.at(r.id);
+    if (m.present(t, n)) {
+      throw InputError(obsmat.string() + ": agent " + std::to_string(r.id) + " has two rows at frame " + std::to_string(r.frame));
+    }
+    m.position(t, n) = Eigen::Vector3d(r.x, r.y, 0.0);
+    m.velocities[m.index(t, n)] = r.vx;
+    m.velocities[m.index(t, n) + 1] = r.vy;
+    m.velocities[m.index(t, n) + 2] = 0.0;
+  }
+
+  const auto groups_path = folder / "groups.txt";
+  if (std::filesystem::exists(groups_path, ec)) {
+    const auto groups = read_groups(groups_path);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      for (std::int64_t id : groups[g]) {
+        const auto it = column.find(id);
+        if (it != column.end() && m.species[it->second] == 0) m.species[it->second] = static_cast<std::int32_t>(g + 1);
+      }
+    }
+  }
+  const auto map_path = folder / "map.xml";
+  if (std::filesystem::exists(map_path, ec)) out.scene = read_map(map_path, options.wall_thickness);
+
+  out.provenance.inputs.push_back(obsmat.string());
+  if (auto credit = dataset_credit(name); !credit.empty()) out.provenance.credits.push_back(credit);
+  m.validate(obsmat.string());
+  return out;
+}
+
+}  // namespace throng
