@@ -4,6 +4,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
+#include <throng/io/config.h>
 #include <throng/io/csv.h>
 #include <throng/io/real_dataset.h>
 
@@ -32,9 +33,9 @@ class ImportCommand final : public Command {
   void run(Context& context) override {
     YAML::Node effective;
     effective["dataset"] = input_.string();
-    effective["fps"] = options_.video_fps;
-    effective["radius"] = options_.agent_radius;
-    effective["wall_thickness"] = options_.wall_thickness;
+    effective["fps"] = yaml_number(options_.video_fps);
+    effective["radius"] = yaml_number(options_.agent_radius);
+    effective["wall_thickness"] = yaml_number(options_.wall_thickness);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
 

@@ -30,7 +30,7 @@ class PlotCommand final : public Command {
     effective["crowd"] = input_.string();
     if (!overlay_.empty()) effective["overlay"] = overlay_.string();
     for (long f : options_.frames) effective["frames"].push_back(f);
-    effective["width"] = options_.width_px;
+    effective["width"] = yaml_number(options_.width_px);
     effective["trajectories"] = options_.trajectories;
     effective["obstacles"] = options_.obstacles;
     if (context.print_config_if_asked(effective)) return;

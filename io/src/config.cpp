@@ -307,7 +307,7 @@ void OptionReader::section(const char* key, const std::function<void(OptionBinde
   }
 }
 
-void OptionWriter::field(const char* key, double& value, Range) { node_[key] = YAML::Load(shortest(value)); }
+void OptionWriter::field(const char* key, double& value, Range) { node_[key] = yaml_number(value); }
 void OptionWriter::field(const char* key, int& value, Range) { node_[key] = value; }
 void OptionWriter::field(const char* key, std::size_t& value, Range) { node_[key] = static_cast<std::uint64_t>(value); }
 void OptionWriter::field(const char* key, bool& value) { node_[key] = value; }
@@ -325,6 +325,8 @@ void OptionWriter::section(const char* key, const std::function<void(OptionBinde
   body(writer);
   node_[key] = inner;
 }
+
+YAML::Node yaml_number(double value) { return YAML::Load(shortest(value)); }
 
 std::string to_yaml_text(const YAML::Node& node) {
   YAML::Emitter out;

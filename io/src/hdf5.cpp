@@ -162,7 +162,7 @@ void write_string_attribute(hid_t object, const std::string& name, const std::ve
                         "cannot create attribute " + name + " on " + where);
   std::vector<const char*> raw;
   for (const auto& v : values) raw.push_back(v.c_str());
-  check(H5Awrite(attr.id(), type.id(), raw.data()), "cannot write attribute " + name + " on " + where);
+  if (!raw.empty()) check(H5Awrite(attr.id(), type.id(), raw.data()), "cannot write attribute " + name + " on " + where);
 }
 
 }  // namespace
@@ -363,13 +363,14 @@ void Group::set_reference_attribute_on(const std::string& object, const std::str
   check(H5Awrite(attr.id(), H5T_STD_REF_OBJ, &ref), "cannot write reference attribute " + name + " on " + where(object));
 }
 
-File File::create(const std::filesystem::path& path) {
+File File::create(const std::filesystem::path& path, const std::string& display_name) {
   silence_hdf5();
   Handle props(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_obj_track_times(props.id(), false);
   hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, props.id(), H5P_DEFAULT);
-  if (f < 0) throw IoError(path.string() + ": cannot create HDF5 file (" + hdf5_reason() + ")");
-  return File(Handle(f), path.filename().string());
+  const std::string name = display_name.empty() ? path.filename().string() : display_name;
+  if (f < 0) throw IoError(name + ": cannot create HDF5 file (" + hdf5_reason() + ")");
+  return File(Handle(f), name);
 }
 
 File File::open(const std::filesystem::path& path) {

@@ -71,8 +71,8 @@ Obstacle read_obstacle(const ConfigNode& n) {
 
 YAML::Node flow_point(const Eigen::Vector2d& p) {
   YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(p.x());
-  n.push_back(p.y());
+  n.push_back(yaml_number(p.x()));
+  n.push_back(yaml_number(p.y()));
   n.SetStyle(YAML::EmitterStyle::Flow);
   return n;
 }
@@ -118,7 +118,7 @@ void write_scene(YAML::Node& job, const Scene& scene) {
             using S = std::decay_t<decltype(s)>;
             if constexpr (std::is_same_v<S, Circle>) {
               n["circle"]["center"] = flow_point(s.center);
-              n["circle"]["radius"] = s.radius;
+              n["circle"]["radius"] = yaml_number(s.radius);
             } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
               YAML::Node vertices(YAML::NodeType::Sequence);
               for (const auto& v : s.vertices) vertices.push_back(flow_point(v));
@@ -126,16 +126,16 @@ void write_scene(YAML::Node& job, const Scene& scene) {
             } else {
               n["wall"]["from"] = flow_point(s.a);
               n["wall"]["to"] = flow_point(s.b);
-              n["wall"]["thickness"] = s.thickness;
+              n["wall"]["thickness"] = yaml_number(s.thickness);
             }
           },
           o.shape);
       if (!o.name.empty()) n["name"] = o.name;
       for (const PoseKey& k : o.motion) {
         YAML::Node key(YAML::NodeType::Map);
-        key["time"] = k.time;
+        key["time"] = yaml_number(k.time);
         key["translation"] = flow_point(k.translation);
-        key["angle"] = k.angle / degrees;
+        key["angle"] = yaml_number(k.angle / degrees);
         key.SetStyle(YAML::EmitterStyle::Flow);
         n["motion"].push_back(key);
       }

@@ -173,7 +173,11 @@ class OptionWriter final : public OptionBinder {
   YAML::Node node_;
 };
 
-/// YAML text of a node, block style, numbers with round-trip precision.
+/// YAML text of a node, block style.
 [[nodiscard]] std::string to_yaml_text(const YAML::Node& node);
+
+/// A YAML scalar holding `value` in the shortest form that reads back to the same double (yaml-cpp's own
+/// conversion writes 17 digits: 0.3 becomes 0.29999999999999999). Use it for every double in an effective config.
+[[nodiscard]] YAML::Node yaml_number(double value);
 
 }  // namespace throng

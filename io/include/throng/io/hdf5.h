@@ -106,8 +106,9 @@ class Group {
 /// An HDF5 file, open for reading or newly created for writing.
 class File {
  public:
-  /// Creates (truncating) `path` for writing. Throws IoError.
-  static File create(const std::filesystem::path& path);
+  /// Creates (truncating) `path` for writing; messages call it `display_name` (default: its file name), so a
+  /// temporary file is reported under the name of the file it becomes. Throws IoError.
+  static File create(const std::filesystem::path& path, const std::string& display_name = {});
   /// Opens an existing file read-only. Throws IoError (missing, unreadable) or InputError (not HDF5, truncated).
   static File open(const std::filesystem::path& path);
 

@@ -1,0 +1,106 @@
+// throng's own flags, exit codes and the data commands (import, export, info, plot), run as a user would.
+#include "test_paths.h"
+
+#include <throng/io/crowd_file.h>
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+using namespace throng;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::string throng_cmd(const std::string& args) { return test::throng_program().string() + " " + args; }
+
+int run(const std::string& args, std::string* out = nullptr) { return test::run_command(throng_cmd(args), out); }
+
+std::size_t files_in(const std::filesystem::path& dir) {
+  return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
+}
+
+}  // namespace
+
+TEST_CASE("help and version exit 0, a bad command line exits 2") {
+  std::string out;
+  CHECK(run("--help", &out) == 0);
+  CHECK_THAT(out, Contains("import") && Contains("plot"));
+  CHECK(run("--version", &out) == 0);
+  CHECK_THAT(out, Contains("throng 0."));
+  CHECK(run("", &out) == 2);
+  CHECK(run("frobnicate", &out) == 2);
+  CHECK(run("info", &out) == 2);  // missing its file argument
+  CHECK(run("info a.h5 --threads minus-one", &out) == 2);
+}
+
+TEST_CASE("info on a missing file exits 4, on a text file 3, each naming the file") {
+  const auto dir = test::scratch_dir("cli_info_errors");
+  std::string out;
+  CHECK(run("info " + (dir / "absent.h5").string(), &out) == 4);
+  CHECK_THAT(out, Contains("absent.h5: no such file"));
+  std::ofstream(dir / "text.h5") << "hello";
+  CHECK(run("info " + (dir / "text.h5").string(), &out) == 3);
+  CHECK_THAT(out, Contains("text.h5: is not an HDF5 file"));
+}
+
+TEST_CASE("import a real dataset, describe it as JSON, export CSV and plot it") {
+  const auto data = test::real_data_dir();
+  if (data.empty()) {
+    WARN("../shared/data/real not found: CLI import test skipped");
+    return;
+  }
+  const auto dir = test::scratch_dir("cli_import");
+  const auto h5 = (dir / "zara.h5").string();
+  std::string out;
+  REQUIRE(run("--quiet import " + (data / "zara01").string() + " -o " + h5, &out) == 0);
+  REQUIRE(run("--json info " + h5, &out) == 0);
+  const auto info = nlohmann::json::parse(out);
+  CHECK(info["agents"] == 148);
+  CHECK(info["obstacles"]["walls"] == 7);
+  CHECK_THAT(info["provenance"]["credits"][0].get<std::string>(), Contains("Crowds by example"));
+  CHECK_THAT(info["provenance"]["command_line"].get<std::string>(), Contains("import"));
+
+  REQUIRE(run("export " + h5 + " --csv -o " + (dir / "zara.csv").string(), &out) == 0);
+  std::ifstream csv(dir / "zara.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header == "time,id,x,y,z");
+
+  REQUIRE(run("plot " + h5 + " -o " + (dir / "zara.svg").string() + " --frames 10,20,-1", &out) == 0);
+  CHECK(std::filesystem::file_size(dir / "zara.svg") > 10000);
+}
+
+TEST_CASE("a failing command leaves no output and no temporary file behind") {
+  const auto dir = test::scratch_dir("cli_no_partial");
+  std::ofstream(dir / "bad.h5") << "not hdf5";
+  std::string out;
+  CHECK(run("plot " + (dir / "bad.h5").string() + " -o " + (dir / "p.svg").string(), &out) == 3);
+  CHECK(run("export " + (dir / "bad.h5").string() + " --csv -o " + (dir / "p.csv").string(), &out) == 3);
+  CHECK(run("import " + (dir / "nowhere").string() + " -o " + (dir / "p.h5").string(), &out) == 4);
+  CHECK(files_in(dir) == 1);
+}
+
+TEST_CASE("an output naming its own input is refused with exit 2 and the input is untouched") {
+  const auto data = test::real_data_dir();
+  const auto dir = test::scratch_dir("cli_same_file");
+  CrowdFile f;
+  f.motion = CrowdMotion::with_shape(2, 1);
+  f.motion.position(0, 0).setZero();
+  f.motion.position(1, 0) = Eigen::Vector3d(1, 0, 0);
+  write_crowd_file(dir / "c.h5", f);
+  const auto size = std::filesystem::file_size(dir / "c.h5");
+  std::string out;
+  CHECK(run("export " + (dir / "c.h5").string() + " --csv -o " + (dir / "c.h5").string(), &out) == 2);
+  CHECK_THAT(out, Contains("is the input file"));
+  CHECK(std::filesystem::file_size(dir / "c.h5") == size);
+}
+
+TEST_CASE("print-config prints the effective options as YAML and writes nothing") {
+  const auto dir = test::scratch_dir("cli_print_config");
+  std::string out;
+  CHECK(run("import somewhere -o " + (dir / "x.h5").string() + " --radius 0.3 --print-config", &out) == 0);
+  CHECK_THAT(out, Contains("radius: 0.3") && Contains("wall_thickness: 0.1"));
+  CHECK(files_in(dir) == 0);
+}

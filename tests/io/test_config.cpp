@@ -1,0 +1,105 @@
+#include <throng/core/errors.h>
+#include <throng/io/config.h>
+
+#include <catch2/catch.hpp>
+#include "check_throws.h"
+
+using namespace throng;
+using Catch::Matchers::Contains;
+
+namespace {
+
+enum class Mode { stop, remove };
+
+struct Options {
+  double time_step = 0.1;
+  int agents = 50;
+  std::size_t steps = 10;
+  bool avoid = true;
+  std::string name = "crowd";
+  std::vector<double> weights{1, 2, 2};
+  Mode mode = Mode::stop;
+  double inner_radius = 0.5;
+};
+
+void bind(OptionBinder& b, Options& o) {
+  b.field("time_step", o.time_step, Range::positive());
+  b.field("agents", o.agents, Range{1, 1e6});
+  b.field("steps", o.steps);
+  b.field("avoid", o.avoid);
+  b.field("name", o.name);
+  b.field("weights", o.weights);
+  b.choice("end_of_path", o.mode, {{"stop", Mode::stop}, {"remove", Mode::remove}});
+  b.section("inner", [&](OptionBinder& s) { s.field("radius", o.inner_radius, Range::closed(0, 2)); });
+}
+
+Options read(const std::string& text) {
+  const ConfigNode job = ConfigNode::parse(text, "job.yaml");
+  Options o;
+  OptionReader r(job);
+  bind(r, o);
+  job.finish();
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("absent keys keep defaults; present keys are read") {
+  const Options o = read("time_step: 0.05\nagents: 7\nend_of_path: remove\ninner: {radius: 1.5}\nweights: [1, 3, 4]\n");
+  CHECK(o.time_step == 0.05);
+  CHECK(o.agents == 7);
+  CHECK(o.steps == 10);
+  CHECK(o.mode == Mode::remove);
+  CHECK(o.inner_radius == 1.5);
+  CHECK(o.weights == std::vector<double>{1, 3, 4});
+}
+
+TEST_CASE("an unknown key is an error naming it, its line and the known keys") {
+  CHECK_THROWS_AS_WITH(read("time_step: 0.05\nagnets: 7\n"), ConfigError,
+                       Contains("job.yaml:2:1: unknown key 'agnets'") && Contains("known here:") && Contains("agents"));
+  CHECK_THROWS_AS_WITH(read("inner: {radius: 1, radios: 2}\n"), ConfigError, Contains("unknown key 'radios' in inner"));
+}
+
+TEST_CASE("out-of-range, wrong-type and non-finite values name the key and line") {
+  CHECK_THROWS_AS_WITH(read("time_step: -1\n"), ConfigError, Contains("job.yaml:1:12 (time_step): value -1 is out of range, expected > 0"));
+  CHECK_THROWS_AS_WITH(read("agents: many\n"), ConfigError, Contains("(agents): expected an integer, found 'many'"));
+  CHECK_THROWS_AS_WITH(read("time_step: .nan\n"), ConfigError, Contains("expected a finite number"));
+  CHECK_THROWS_AS_WITH(read("end_of_path: vanish\n"), ConfigError, Contains("expected one of: stop, remove"));
+  CHECK_THROWS_AS_WITH(read("inner: {radius: 3}\n"), ConfigError, Contains("expected in [0, 2]"));
+  CHECK_THROWS_AS_WITH(read("steps: -4\n"), ConfigError, Contains("out of range"));
+  CHECK_THROWS_AS_WITH(read("time_step: [1\n"), ConfigError, Contains("not valid YAML"));
+}
+
+TEST_CASE("writing the effective options and reading them back gives the same options") {
+  Options o;
+  o.time_step = 0.1 + 0.2;  // not representable exactly: the writer must round-trip it
+  o.mode = Mode::remove;
+  YAML::Node node(YAML::NodeType::Map);
+  OptionWriter w(node);
+  bind(w, o);
+  const Options back = read(to_yaml_text(node));
+  CHECK(back.time_step == o.time_step);
+  CHECK(back.mode == Mode::remove);
+  CHECK(back.weights == o.weights);
+  CHECK(back.inner_radius == o.inner_radius);
+}
+
+TEST_CASE("set overrides (--set) reach nested keys and create missing ones") {
+  YAML::Node root = YAML::Load("agents: 5\ninner: {radius: 1}\n");
+  apply_overrides(root, {"agents=9", "inner.radius=0.25", "weights=[3, 2, 1]", "name=big crowd"});
+  const Options o = read(to_yaml_text(root));
+  CHECK(o.agents == 9);
+  CHECK(o.inner_radius == 0.25);
+  CHECK(o.weights == std::vector<double>{3, 2, 1});
+  CHECK(o.name == "big crowd");
+  CHECK_THROWS_AS(apply_overrides(root, {"agents"}), ConfigError);
+  CHECK_THROWS_AS(apply_overrides(root, {"agents.x=1"}), ConfigError);
+}
+
+TEST_CASE("lists and missing keys report their place") {
+  const ConfigNode job = ConfigNode::parse("points: [[0, 0], [1, 2, 3]]\n", "j.yaml");
+  const auto points = job.at("points").elements();
+  CHECK(points[0].as_doubles({2}) == std::vector<double>{0, 0});
+  CHECK_THROWS_AS_WITH(points[1].as_doubles({2}), ConfigError, Contains("(points[1]): expected 2 numbers, found 3"));
+  CHECK_THROWS_AS_WITH(job.at("strokes"), ConfigError, Contains("missing key 'strokes'"));
+}

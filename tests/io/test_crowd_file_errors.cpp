@@ -1,0 +1,119 @@
+// Every bad-input case of the crowd file reader: one test each, checking the error type (hence the exit code)
+// and that the message names the dataset and the problem.
+#include "crowd_fixtures.h"
+#include "test_paths.h"
+
+#include <throng/core/errors.h>
+#include <throng/io/crowd_file.h>
+#include <throng/io/hdf5.h>
+
+#include <catch2/catch.hpp>
+#include "check_throws.h"
+
+#include <fstream>
+
+using namespace throng;
+
+namespace {
+
+enum class Defect { none, missing_position, rank_two, last_axis_two, time_length, nan_present, times_decrease, version_two, id_changes };
+
+// A minimal H5MD crowd file (3 frames, 2 agents) written by hand, with one defect.
+void write_by_hand(const std::filesystem::path& path, Defect d) {
+  h5::File f = h5::File::create(path);
+  {
+    const h5::Group root = f.root();
+    root.create_group("h5md").set_attribute("version", std::vector<std::int32_t>{1, 1});
+    const h5::Group traj = root.create_group("particles").create_group("trajectory");
+    const h5::Group pos = traj.create_group("position");
+    std::vector<double> value{0, 0, 0, 1, 0, 0, 0.1, 0, 0, 1.1, 0, 0, 0.2, 0, 0, 1.2, 0, 0};
+    if (d == Defect::nan_present) value[6] = std::nan("");
+    if (d == Defect::rank_two) pos.write("value", value, {3, 6});
+    else if (d == Defect::last_axis_two) pos.write("value", std::vector<double>(12, 0.0), {3, 2, 2});
+    else if (d != Defect::missing_position) pos.write("value", value, {3, 2, 3});
+    std::vector<double> time{0, 1, 2};
+    if (d == Defect::times_decrease) time = {0, 2, 1};
+    if (d == Defect::time_length) time = {0, 1};
+    pos.write("time", time, {time.size()});
+    pos.write("step", std::vector<std::int64_t>{0, 1, 2}, {3});
+    std::vector<std::int64_t> ids{5, 6, 5, 6, 5, 6};
+    if (d == Defect::id_changes) ids[4] = 9;
+    traj.create_group("id").write("value", ids, {3, 2});
+    const h5::Group params = root.create_group("parameters").create_group("throng");
+    params.set_attribute("format_version", std::int64_t{d == Defect::version_two ? 2 : 1});
+    const h5::Group agents = params.create_group("agents");
+    agents.write("id", std::vector<std::int64_t>{5, 6}, {2});
+    agents.write("radius", std::vector<double>{0.2, 0.2}, {2});
+  }
+  f.close();
+}
+
+std::filesystem::path case_file(const std::string& name, Defect d) {
+  const auto dir = test::scratch_dir("io_errors_" + name);
+  write_by_hand(dir / "crowd.h5", d);
+  return dir / "crowd.h5";
+}
+
+}  // namespace
+
+TEST_CASE("the hand-written file without defects reads") {
+  const CrowdFile f = read_crowd_file(case_file("none", Defect::none));
+  CHECK(f.motion.frame_count() == 3);
+  CHECK(f.motion.ids == std::vector<std::int64_t>{5, 6});
+}
+
+TEST_CASE("missing file: IoError naming the path") {
+  CHECK_THROWS_AS_WITH(read_crowd_file("/nonexistent/crowd.h5"), IoError, Catch::Matchers::Contains("/nonexistent/crowd.h5: no such file"));
+}
+
+TEST_CASE("not HDF5: InputError") {
+  const auto dir = test::scratch_dir("io_errors_text");
+  std::ofstream(dir / "notes.h5") << "time,id,x,y,z\n0,1,0,0,0\n";
+  CHECK_THROWS_AS_WITH(read_crowd_file(dir / "notes.h5"), InputError, Catch::Matchers::Contains("is not an HDF5 file"));
+}
+
+TEST_CASE("truncated file: InputError") {
+  const auto dir = test::scratch_dir("io_errors_truncated");
+  write_crowd_file(dir / "whole.h5", test::rich_crowd());
+  const auto size = std::filesystem::file_size(dir / "whole.h5");
+  std::filesystem::copy_file(dir / "whole.h5", dir / "cut.h5");
+  std::filesystem::resize_file(dir / "cut.h5", size / 2);
+  CHECK_THROWS_AS_WITH(read_crowd_file(dir / "cut.h5"), InputError, Catch::Matchers::Contains("truncated"));
+}
+
+TEST_CASE("missing dataset: InputError naming it") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("missing", Defect::missing_position)), InputError,
+                       Catch::Matchers::Contains("/particles/trajectory/position/value: missing dataset"));
+}
+
+TEST_CASE("wrong rank: InputError naming the dataset and the ranks") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("rank", Defect::rank_two)), InputError,
+                       Catch::Matchers::Contains("position/value: has rank 2, expected 3"));
+}
+
+TEST_CASE("wrong shape: InputError for a last axis other than 3 and for a time length mismatch") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("axis", Defect::last_axis_two)), InputError,
+                       Catch::Matchers::Contains("expected [frames][agents][3]"));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("time", Defect::time_length)), InputError,
+                       Catch::Matchers::Contains("position/time: has 2 entries for 3 frames"));
+}
+
+TEST_CASE("NaN for a present agent: InputError naming agent and frame") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("nan", Defect::nan_present)), InputError,
+                       Catch::Matchers::Contains("NaN or infinite position for present agent 5 at frame 1"));
+}
+
+TEST_CASE("times not increasing: InputError naming the frame") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("times", Defect::times_decrease)), InputError,
+                       Catch::Matchers::Contains("times not increasing at frame 2"));
+}
+
+TEST_CASE("unknown format version: InputError naming both versions") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("version", Defect::version_two)), InputError,
+                       Catch::Matchers::Contains("unknown format version 2 (this throng reads version 1)"));
+}
+
+TEST_CASE("an id that changes within a column: InputError") {
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("ids", Defect::id_changes)), InputError,
+                       Catch::Matchers::Contains("column 0 holds id 9 at frame 2"));
+}
