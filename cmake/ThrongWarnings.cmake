@@ -3,6 +3,7 @@ add_library(throng_warnings INTERFACE)
 target_compile_options(throng_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wcast-align -Woverloaded-virtual
   -Wno-restrict  # GCC 12 false positives on std::string concatenation (GCC bug 105329)
+  -Wno-missing-field-initializers  # Options structs have default member initialisers: designated initialisers name only what differs
   $<$<BOOL:${THRONG_WERROR}>:-Werror>)
 
 if(THRONG_SANITIZE)

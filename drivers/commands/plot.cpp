@@ -41,9 +41,9 @@ class PlotCommand final : public Command {
     std::vector<PlotLayer> layers;
     if (!overlay_.empty()) {
       before = read_crowd_file(overlay_);
-      layers.push_back({&before, "before: " + overlay_.filename().string(), std::string("#9a9a9a"), 0.8, true, true});
+      layers.push_back({.file = &before, .label = "before: " + overlay_.filename().string(), .colour = "#9a9a9a", .opacity = 0.8, .dashed = true});
     }
-    layers.push_back({&file, overlay_.empty() ? input_.filename().string() : "after: " + input_.filename().string(), std::nullopt, 0.85, false, true});
+    layers.push_back({.file = &file, .label = overlay_.empty() ? input_.filename().string() : "after: " + input_.filename().string()});
     if (options_.title.empty()) options_.title = input_.filename().string();
     write_plot(output_, layers, options_);
     Report r;

@@ -128,6 +128,10 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
       const double t1 = m.times.empty() ? 0.0 : m.times.back();
       for (const Obstacle& o : layer.file->scene.obstacles) box.extend(bounds_over(o, t0, t1));
     }
+    for (const PlotPolyline& line : layer.polylines) {
+      for (const auto& p : line.points) box.extend(p);
+    }
+    for (const PlotMarker& marker : layer.markers) box.extend(marker.at);
     if (layer.file->scene.region) {
       box.extend(layer.file->scene.region->min);
       box.extend(layer.file->scene.region->max);
@@ -199,7 +203,7 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   for (const PlotLayer& layer : layers) {
     const CrowdMotion& m = layer.file->motion;
     const std::size_t T = m.frame_count(), N = m.agent_count();
-    if (options.trajectories) {
+    if (options.trajectories && layer.draw_trajectories) {
       svg.raw("<g fill=\"none\" stroke-linejoin=\"round\" stroke-linecap=\"round\"");
       svg.attr("stroke-width", line_width);
       svg.attr("opacity", layer.opacity);
@@ -235,6 +239,21 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
       }
       svg.raw("</g>\n");
     }
+    for (const PlotPolyline& line : layer.polylines) {
+      if (line.points.size() < 2) continue;
+      svg.raw("<polyline fill=\"none\" stroke-linejoin=\"round\" stroke=\"" + line.colour + "\"");
+      svg.attr("stroke-width", line.width_px);
+      svg.attr("opacity", line.opacity);
+      if (line.dashed) svg.raw(" stroke-dasharray=\"5 3\"");
+      svg.raw(" points=\"");
+      for (const auto& p : line.points) {
+        svg.number(v.px(p.x()));
+        svg.raw(",");
+        svg.number(v.py(p.y()));
+        svg.raw(" ");
+      }
+      svg.raw("\"/>\n");
+    }
     if (layer.draw_agents) {
       const std::size_t frames = options.frames.size();
       for (std::size_t k = 0; k < frames; ++k) {
@@ -258,6 +277,16 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
         }
         svg.raw("</g>\n");
       }
+    }
+  }
+
+  for (const PlotLayer& layer : layers) {
+    for (const PlotMarker& m : layer.markers) {
+      svg.raw("<circle");
+      svg.attr("cx", v.px(m.at.x()));
+      svg.attr("cy", v.py(m.at.y()));
+      svg.attr("r", m.radius_px);
+      svg.raw(" fill=\"" + m.colour + "\" stroke=\"white\" stroke-width=\"0.5\"/>\n");
     }
   }
 

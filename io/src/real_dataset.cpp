@@ -7,7 +7,6 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
@@ -143,16 +142,12 @@ CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, con
 
   const std::vector<Row> rows = read_obsmat(obsmat);
 
-  // The frame grid: from the first to the last annotated frame in steps of the gcd of the gaps.
+  // Frames: the annotated video frames, in order (see the header for why not a regular grid).
   std::vector<std::int64_t> frames;
   for (const Row& r : rows) frames.push_back(r.frame);
   std::sort(frames.begin(), frames.end());
   frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
-  std::int64_t step = 0;
-  for (std::size_t i = 1; i < frames.size(); ++i) step = std::gcd(step, frames[i] - frames[i - 1]);
-  if (step == 0) step = 1;
-  const std::int64_t first = frames.front();
-  const std::size_t T = static_cast<std::size_t>((frames.back() - first) / step) + 1;
+  const std::size_t T = frames.size();
 
   std::vector<std::int64_t> ids;
   for (const Row& r : rows) ids.push_back(r.id);
@@ -167,9 +162,9 @@ CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, con
   m = CrowdMotion::with_shape(T, N, options.agent_radius);
   m.ids = ids;
   m.velocities.assign(m.positions.size(), absent);
-  for (std::size_t t = 0; t < T; ++t) m.times[t] = static_cast<double>(first + static_cast<std::int64_t>(t) * step) / fps;
+  for (std::size_t t = 0; t < T; ++t) m.times[t] = static_cast<double>(frames[t]) / fps;
   for (const Row& r : rows) {
-    const std::size_t t = static_cast<std::size_t>((r.frame - first) / step);
+    const auto t = static_cast<std::size_t>(std::lower_bound(frames.begin(), frames.end(), r.frame) - frames.begin());
     const std::size_t n = column.at(r.id);
     if (m.present(t, n)) {
       throw InputError(obsmat.string() + ": agent " + std::to_string(r.id) + " has two rows at frame " + std::to_string(r.frame));

@@ -39,8 +39,13 @@ TEST_CASE("hotel: every annotated row lands at its frame, walls and pillars beco
   for (const auto& r : rows) ids.insert(r.id);
   CHECK(m.agent_count() == ids.size());
   CHECK(m.agent_count() == 390);
-  // Uniform 0.4 s: every 10th frame of a 25 fps video.
-  for (std::size_t t = 1; t < m.frame_count(); ++t) REQUIRE(m.times[t] - m.times[t - 1] == Catch::Detail::Approx(0.4));
+  // One frame per annotated video frame (1,168), 0.4 s apart wherever an agent stays present (every 10th frame of
+  // a 25 fps video).
+  CHECK(m.frame_count() == 1168);
+  for (std::size_t n = 0; n < m.agent_count(); ++n) {
+    const auto [first, last] = m.presence_span(n);
+    for (std::size_t t = first + 1; t < last; ++t) REQUIRE(m.times[t] - m.times[t - 1] == Catch::Detail::Approx(0.4));
+  }
   std::size_t present = 0;
   for (std::size_t t = 0; t < m.frame_count(); ++t) {
     for (std::size_t n = 0; n < m.agent_count(); ++n) present += m.present(t, n);
@@ -48,7 +53,8 @@ TEST_CASE("hotel: every annotated row lands at its frame, walls and pillars beco
   CHECK(present == rows.size());
   for (std::size_t i = 0; i < rows.size(); i += 97) {
     const auto& r = rows[i];
-    const auto t = static_cast<std::size_t>(std::lround((r.frame / 25.0 - m.times.front()) / 0.4));
+    const auto t = static_cast<std::size_t>(std::find_if(m.times.begin(), m.times.end(), [&](double x) { return std::abs(x - r.frame / 25.0) < 1e-9; }) - m.times.begin());
+    REQUIRE(t < m.frame_count());
     const auto n = static_cast<std::size_t>(std::find(m.ids.begin(), m.ids.end(), static_cast<std::int64_t>(r.id)) - m.ids.begin());
     REQUIRE(m.present(t, n));
     CHECK(m.position(t, n).x() == r.x);
@@ -74,7 +80,7 @@ TEST_CASE("hotel: every annotated row lands at its frame, walls and pillars beco
   CHECK_THAT(f.provenance.credits[0], Catch::Contains("Pellegrini"));
 }
 
-TEST_CASE("eth uses 15 fps; students03 has no map; each dataset imports") {
+TEST_CASE("eth uses 15 fps, students03 has no map, each dataset imports") {
   const auto data = test::real_data_dir();
   if (data.empty()) {
     WARN("../shared/data/real not found: real-data import test skipped");
@@ -82,6 +88,7 @@ TEST_CASE("eth uses 15 fps; students03 has no map; each dataset imports") {
   }
   const CrowdFile eth = import_real_dataset(data / "eth", {});
   CHECK(eth.motion.times[1] - eth.motion.times[0] == Catch::Detail::Approx(0.4));  // 6 frames at 15 fps
+  CHECK(eth.motion.frame_count() == 1448);
   CHECK(eth.motion.agent_count() == 360);
   const CrowdFile students = import_real_dataset(data / "univ_students03" / "obsmat.txt", {});
   CHECK(students.scene.obstacles.empty());

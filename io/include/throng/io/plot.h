@@ -12,6 +12,23 @@
 
 namespace throng {
 
+/// An extra line in world coordinates (metres), drawn over the trajectories: patch paths of a tiling,
+/// connections, formation edges, warped paths ...
+struct PlotPolyline {
+  std::vector<Eigen::Vector2d> points;
+  std::string colour = "#000000";
+  double width_px = 1.5;
+  double opacity = 1.0;
+  bool dashed = false;
+};
+
+/// An extra marker: a small disc (radius in pixels) at a world point, e.g. a connection between patches.
+struct PlotMarker {
+  Eigen::Vector2d at{0, 0};
+  std::string colour = "#000000";
+  double radius_px = 3.0;
+};
+
 /// One crowd to draw.
 struct PlotLayer {
   const CrowdFile* file = nullptr;
@@ -20,6 +37,9 @@ struct PlotLayer {
   double opacity = 0.85;
   bool dashed = false;
   bool draw_agents = true;             ///< discs at the chosen frames
+  bool draw_trajectories = true;       ///< this layer's agents' paths (PlotOptions::trajectories turns all off)
+  std::vector<PlotPolyline> polylines; ///< drawn after the trajectories
+  std::vector<PlotMarker> markers;     ///< drawn last
 };
 
 struct PlotOptions {

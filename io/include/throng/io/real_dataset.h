@@ -4,10 +4,11 @@
 //   map.xml      OpenTraj's obstacles: <Line x1 y1 x2 y2> wall segments, <Circle x y radius> pillars (optional)
 //   groups.txt   one walking group per line, as agent ids (optional)
 //
-// Frames: the annotated video frames lie on a regular grid (every 6th frame for eth, every 10th for the others);
-// the crowd gets one frame per grid point from the first to the last annotated frame, at time = frame / video fps,
-// so frames where nobody was annotated are kept (all agents absent) and time stays uniform. Agents are present
-// exactly where annotated. Velocities are the annotators' estimates, kept as the velocity element.
+// Frames: one per annotated video frame, at time = frame / video fps. Annotation runs every 6th video frame (eth)
+// or every 10th (the others), i.e. every 0.4 s, but not on one global grid: eth's annotation changes phase across
+// stretches where nobody is annotated (frame gaps of 395 and 402). Keeping the annotated frames as they are is
+// exact: times are uniform (0.4 s) wherever anybody is present and jump only across those empty stretches.
+// Agents are present exactly where annotated. Velocities are the annotators' estimates, kept as the velocity element.
 // Species: agents of the k-th walking group get species k (1-based); agents in no group get 0.
 // Walls: map.xml's "thickness" attribute is a drawing width in pixels, not metres, so walls get
 // `wall_thickness` instead.
