@@ -1,0 +1,124 @@
+// Constrained sparse linear least squares, the product's one way to solve
+//
+//   minimise |W^(1/2) (A x − b)|²   subject to   C x = d   and   x[pinned] = pin values
+//
+// with a precompute/solve split (libigl min_quad_with_fixed, Eigen analyzePattern/factorize/solve):
+//   * pinned unknowns are eliminated: with F the free and P the pinned unknowns and Q = AᵀWA, the free part
+//     solves Q_FF x_F = (AᵀW b)_F − Q_FP x_P, and Q_FF is symmetric positive definite when the pins determine
+//     the problem (otherwise: NumericalError "singular");
+//   * general constraints go through the Schur complement S = C_F Q_FF⁻¹ C_Fᵀ on the existing factorisation:
+//       x0 = Q_FF⁻¹ r,   S λ = C_F x0 − (d − C_P x_P),   x_F = x0 − Q_FF⁻¹ C_Fᵀ λ,
+//     so adding constraints costs one back-substitution per new row, never a refactorisation. Redundant rows
+//     (S singular, constraints consistent) are allowed; contradictory rows are a ConstraintError after the solve;
+//   * new right-hand sides b, new pin values and new constraint values d only cost back-substitutions.
+//
+// Stale state is explicit: each mutator marks what it invalidates, precompute() redoes exactly that (and
+// solve() calls it when something is stale), and report() counts analyses and factorisations so a caller or
+// test can see that a drag did not refactorise.
+//
+// Shapes (libigl style):
+//   A            #rows by #unknowns (sparse)          weights  #rows, ≥ 0
+//   b            #rows by #rhs                         pinned   #pinned unknown indices (distinct)
+//   pin_values   #pinned by #rhs (in the order given to set_pinned)
+//   C            #constraints by #unknowns (sparse)    d        #constraints by #rhs
+//   x            #unknowns by #rhs
+#pragma once
+
+#include <throng/core/errors.h>
+#include <throng/linalg/solver_options.h>
+#include <throng/linalg/spd_solver.h>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <memory>
+#include <vector>
+
+namespace throng::linalg {
+
+/// General constraints that cannot all be met: they contradict each other or the pins. rows() lists the
+/// constraint rows (indices into C, in the order they were set and added) that are violated after the solve,
+/// so a caller can name them in its own terms.
+class ConstraintError : public NumericalError {
+ public:
+  ConstraintError(const std::string& message, std::vector<Eigen::Index> rows)
+      : NumericalError(message), rows_(std::move(rows)) {}
+  [[nodiscard]] const std::vector<Eigen::Index>& rows() const noexcept { return rows_; }
+
+ private:
+  std::vector<Eigen::Index> rows_;
+};
+
+/// What precompute() and solve() did: counts, timings (seconds) and the backend's own report.
+struct LeastSquaresReport {
+  int analyses = 0;          ///< symbolic analyses so far (new pattern or new pinned set)
+  int factorizations = 0;    ///< numeric factorisations so far (new values)
+  int schur_columns = 0;     ///< back-substitutions spent on Schur complement columns so far
+  double analyze_seconds = 0;     ///< last analysis (assembling Q and the symbolic phase)
+  double factorize_seconds = 0;   ///< last factorisation
+  double schur_seconds = 0;       ///< last Schur complement update
+  double solve_seconds = 0;       ///< last solve
+  Eigen::Index constraint_rank = 0;         ///< rank of the constraints on the free unknowns
+  double max_constraint_residual = 0;       ///< max |c·x − d| over unit-length rows, last solve
+  FactorizationInfo factorization;
+  SolveInfo last_solve;
+};
+
+/// The stateful solver. Not copyable; one instance per problem (per rank when the backend is distributed).
+class ConstrainedLeastSquares {
+ public:
+  explicit ConstrainedLeastSquares(const SolverOptions& options = {});
+  ~ConstrainedLeastSquares();
+  ConstrainedLeastSquares(const ConstrainedLeastSquares&) = delete;
+  ConstrainedLeastSquares& operator=(const ConstrainedLeastSquares&) = delete;
+
+  /// The objective. Invalidates everything (new pattern: analysis, factorisation, Schur complement).
+  void set_objective(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights);
+  /// New row weights for the same A. Invalidates the factorisation and the Schur complement, not the analysis.
+  void set_weights(const Eigen::Ref<const Eigen::VectorXd>& weights);
+  /// The pinned unknowns (distinct, any order; values come with each solve). Invalidates everything.
+  void set_pinned(std::vector<Eigen::Index> pinned);
+  /// Replaces the general constraints. Invalidates the Schur complement only.
+  void set_constraints(const SparseMatrix& C);
+  /// Appends constraint rows: costs one back-substitution per new row, the factorisation is kept.
+  void add_constraints(const SparseMatrix& C);
+  /// Removes every general constraint (keeps the factorisation).
+  void clear_constraints();
+  /// Near-null-space hint for multigrid backends (#unknowns by #modes, see SpdSolver), restricted to the free
+  /// unknowns; block_size unknowns per node (kept when the pins take or leave whole nodes, else 1).
+  /// Invalidates the analysis.
+  void set_near_null_space(const Eigen::Ref<const Eigen::MatrixXd>& modes, int block_size);
+
+  /// Redoes what the mutators made stale: assemble Q and analyse, factorise, extend the Schur complement.
+  /// Throws NumericalError when Q_FF is singular (the pins do not determine x).
+  void precompute();
+
+  /// Solves for #rhs right-hand sides at once (see the shapes above). Calls precompute() if anything is stale.
+  /// Throws ConstraintError when the constraints cannot be met.
+  [[nodiscard]] Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                      const Eigen::Ref<const Eigen::MatrixXd>& pin_values,
+                                      const Eigen::Ref<const Eigen::MatrixXd>& d);
+
+  [[nodiscard]] Eigen::Index unknowns() const noexcept;
+  [[nodiscard]] Eigen::Index constraints() const noexcept;
+  [[nodiscard]] const std::vector<Eigen::Index>& pinned() const noexcept;
+  /// True when solve() would not need precompute().
+  [[nodiscard]] bool is_ready() const noexcept;
+  [[nodiscard]] const LeastSquaresReport& report() const noexcept;
+  [[nodiscard]] const SolverOptions& options() const noexcept;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// One-off: the same problem solved once (builds, precomputes and solves a ConstrainedLeastSquares).
+/// Empty C means no general constraints (d must then have 0 rows).
+[[nodiscard]] Eigen::MatrixXd solve_least_squares(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights,
+                                                  const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                                  const std::vector<Eigen::Index>& pinned,
+                                                  const Eigen::Ref<const Eigen::MatrixXd>& pin_values,
+                                                  const SparseMatrix& C, const Eigen::Ref<const Eigen::MatrixXd>& d,
+                                                  const SolverOptions& options = {});
+
+}  // namespace throng::linalg

@@ -1,0 +1,47 @@
+// Options of the solver layer: which backend, how hard iterative backends work, how constraints are checked.
+#pragma once
+
+#include <Eigen/SparseCore>
+
+#include <string>
+
+namespace throng::linalg {
+
+/// The sparse matrix type of the solver layer (column-major, 32-bit indices as most producers use).
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+/// How to solve. Filled from a job's `solver:` block or the --backend flag; written into outputs.
+struct SolverOptions {
+  /// "eigen" or "petsc". An unknown name, or a backend this build lacks, is a ConfigError (never a fallback).
+  std::string backend = "eigen";
+
+  // --- eigen ---
+  /// BLAS threads inside CHOLMOD's supernodal kernels. 1 by default: on the project's 2-core reference machine
+  /// OpenBLAS (OpenMP build) is slower with 2 threads for every front size CHOLMOD produced here (see
+  /// bench/linalg), and 1 thread keeps the factor's bits independent of --threads. 0 = the process's limit.
+  int blas_threads = 1;
+
+  // --- petsc (iterative) ---
+  /// Stop when ‖Q x − b‖₂ ≤ relative_tolerance · ‖b‖₂ (unpreconditioned residual norm).
+  double relative_tolerance = 1e-12;
+  /// Iteration cap per right-hand side; reaching it is a NumericalError.
+  int max_iterations = 2000;
+  /// PETSc options prefix of this solver: `-throng_ksp_type gmres` or `-throng_pc_type hypre` in PETSC_OPTIONS
+  /// (or in `petsc_options` below) reach it. Must end with an underscore.
+  std::string petsc_prefix = "throng_";
+  /// Extra PETSc options applied before KSPSetFromOptions, written without the prefix, for example
+  /// "-ksp_type cg -pc_type hypre". Defaults chosen in code: CG with GAMG.
+  std::string petsc_options;
+
+  // --- constrained least squares (least_squares.h), any backend ---
+  /// A general constraint row counts as met when |c·x − d| ≤ constraint_tolerance · (1 + ‖x‖∞), with the row
+  /// scaled to unit length. A violation after the solve means the constraints contradict each other or the
+  /// pins: ConstraintError.
+  double constraint_tolerance = 1e-8;
+  /// Memory allowed for the cached columns Q⁻¹Cᵀ of the Schur complement (#free unknowns by #constraints
+  /// doubles). Within it a solve with constraints costs one back-substitution and a dense product; beyond it,
+  /// two back-substitutions and no cache.
+  double schur_cache_megabytes = 512;
+};
+
+}  // namespace throng::linalg

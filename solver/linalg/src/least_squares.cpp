@@ -1,0 +1,504 @@
+#include <throng/linalg/least_squares.h>
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace throng::linalg {
+namespace {
+
+using Index = Eigen::Index;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Schur complement pivots below this fraction of the largest are rounding: those constraint rows are redundant
+// (linear combinations of others). Exact redundancy leaves ~1e-16 with a direct backend and ~ the iterative
+// tolerance (1e-12) with PETSc.
+constexpr double redundant_pivot = 1e-9;
+
+// Q = Aᵀ diag(w) A, both triangles.
+SparseMatrix normal_matrix(const SparseMatrix& A, const Eigen::VectorXd& w) {
+  const SparseMatrix weighted = w.asDiagonal() * A;
+  SparseMatrix Q = SparseMatrix(A.transpose()) * weighted;
+  Q.makeCompressed();
+  return Q;
+}
+
+// The rows `keep` (new index per old row, −1 dropped) of the columns `columns` of M, as a new matrix with
+// `rows` rows. Used to cut Q into Q_FF, Q_FP and Cᵀ into its free and pinned parts.
+SparseMatrix select(const SparseMatrix& M, const std::vector<Index>& keep, Index rows, const std::vector<Index>& columns) {
+  SparseMatrix out(rows, static_cast<Index>(columns.size()));
+  Eigen::VectorXi counts = Eigen::VectorXi::Zero(out.cols());
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    for (SparseMatrix::InnerIterator it(M, columns[c]); it; ++it) counts[static_cast<Index>(c)] += keep[static_cast<std::size_t>(it.row())] >= 0;
+  }
+  out.reserve(counts);
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    for (SparseMatrix::InnerIterator it(M, columns[c]); it; ++it) {
+      const Index r = keep[static_cast<std::size_t>(it.row())];
+      if (r >= 0) out.insert(r, static_cast<Index>(c)) = it.value();
+    }
+  }
+  out.makeCompressed();
+  return out;
+}
+
+std::vector<Index> iota(Index n) {
+  std::vector<Index> v(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) v[static_cast<std::size_t>(i)] = i;
+  return v;
+}
+
+}  // namespace
+
+struct ConstrainedLeastSquares::State {
+  explicit State(const SolverOptions& o) : options(o), backend(make_spd_solver(o)) {}
+
+  SolverOptions options;
+  std::unique_ptr<SpdSolver> backend;
+
+  // Objective.
+  SparseMatrix A;
+  Eigen::VectorXd weights;
+  SparseMatrix Q;  // AᵀWA
+
+  // Pins: the free unknowns in increasing order, and each unknown's free position or pin slot (−1 if none).
+  std::vector<Index> pinned;
+  std::vector<Index> free_unknowns;
+  std::vector<Index> free_position;
+  std::vector<Index> pin_slot;
+  SparseMatrix Q_FF, Q_FP;
+
+  // Constraints, rows scaled to unit length, stored transposed (one column per constraint).
+  SparseMatrix CT;         // #unknowns by #constraints
+  Eigen::VectorXd row_norm;  // original length of each row (0 for an empty row)
+  SparseMatrix CT_F, CT_P;   // free and pinned parts
+
+  // Schur complement S = C_F Q_FF⁻¹ C_Fᵀ over the first `schur_rows` constraints; Y = Q_FF⁻¹ C_Fᵀ when cached.
+  Index schur_rows = 0;
+  Eigen::MatrixXd S;
+  Eigen::LDLT<Eigen::MatrixXd> S_ldlt;
+  Index S_rank = 0;
+  Eigen::MatrixXd Y;
+  bool y_cached = true;
+
+  // Near-null-space hint.
+  Eigen::MatrixXd modes;
+  int block_size = 1;
+
+  // What is stale. split_stale: Q has new values that Q_FF and Q_FP do not have yet.
+  bool q_stale = true;
+  bool split_stale = true;
+  bool analysis_stale = true;
+  bool factor_stale = true;
+
+  LeastSquaresReport report;
+
+  [[nodiscard]] Index n() const { return A.cols(); }
+  [[nodiscard]] Index m() const { return CT.cols(); }
+  [[nodiscard]] Index free_count() const { return static_cast<Index>(free_unknowns.size()); }
+
+  void invalidate_factor() {
+    factor_stale = true;
+    invalidate_schur();
+  }
+  void invalidate_schur() {
+    schur_rows = 0;
+    S.resize(0, 0);
+    Y.resize(0, 0);
+    y_cached = true;
+  }
+
+  void build_pin_maps() {
+    const Index n_ = n();
+    free_position.assign(static_cast<std::size_t>(n_), -1);
+    pin_slot.assign(static_cast<std::size_t>(n_), -1);
+    for (std::size_t k = 0; k < pinned.size(); ++k) {
+      const Index p = pinned[k];
+      if (p < 0 || p >= n_) {
+        throw std::invalid_argument("ConstrainedLeastSquares: pinned unknown " + std::to_string(p) + " is outside [0, " +
+                                    std::to_string(n_) + ")");
+      }
+      if (pin_slot[static_cast<std::size_t>(p)] >= 0) {
+        throw std::invalid_argument("ConstrainedLeastSquares: unknown " + std::to_string(p) + " is pinned twice");
+      }
+      pin_slot[static_cast<std::size_t>(p)] = static_cast<Index>(k);
+    }
+    free_unknowns.clear();
+    for (Index i = 0; i < n_; ++i) {
+      if (pin_slot[static_cast<std::size_t>(i)] < 0) {
+        free_position[static_cast<std::size_t>(i)] = static_cast<Index>(free_unknowns.size());
+        free_unknowns.push_back(i);
+      }
+    }
+  }
+
+  void split_q() {
+    Q_FF = select(Q, free_position, free_count(), free_unknowns);
+    Q_FP = select(Q, free_position, free_count(), pinned);
+  }
+
+  void split_constraints() {
+    const auto all = iota(m());
+    CT_F = select(CT, free_position, free_count(), all);
+    CT_P = select(CT, pin_slot, static_cast<Index>(pinned.size()), all);
+  }
+
+  // The near-null-space modes on the free unknowns, and whether the pins keep whole nodes of block_size.
+  void pass_near_null_space() {
+    if (modes.cols() == 0) {
+      backend->set_near_null_space(Eigen::MatrixXd(), 1);
+      return;
+    }
+    int bs = block_size;
+    if (bs > 1 && n() % bs == 0) {
+      for (Index node = 0; node < n() / bs && bs > 1; ++node) {
+        const bool first_free = free_position[static_cast<std::size_t>(node * bs)] >= 0;
+        for (int k = 1; k < bs; ++k) {
+          if ((free_position[static_cast<std::size_t>(node * bs + k)] >= 0) != first_free) bs = 1;
+        }
+      }
+    } else {
+      bs = 1;
+    }
+    Eigen::MatrixXd restricted(free_count(), modes.cols());
+    for (Index i = 0; i < free_count(); ++i) restricted.row(i) = modes.row(free_unknowns[static_cast<std::size_t>(i)]);
+    backend->set_near_null_space(restricted, bs);
+  }
+
+  void factorize() {
+    try {
+      backend->factorize(Q_FF);
+    } catch (const SingularMatrixError& e) {
+      const Index unknown = e.index() >= 0 && e.index() < free_count() ? free_unknowns[static_cast<std::size_t>(e.index())] : -1;
+      throw SingularMatrixError(e.what(), unknown);
+    }
+  }
+
+  // Solves Q_FF X = B.
+  Eigen::MatrixXd solve_free(const Eigen::Ref<const Eigen::MatrixXd>& B) {
+    Eigen::MatrixXd X(B.rows(), B.cols());
+    backend->solve(B, X);
+    report.last_solve = backend->solve_info();
+    return X;
+  }
+
+  // Adds Schur complement rows and columns for constraints [schur_rows, m()).
+  void extend_schur() {
+    const Index m_ = m();
+    const Index m0 = schur_rows;
+    const Index nf = free_count();
+    const double cache_bytes = static_cast<double>(nf) * static_cast<double>(m_) * sizeof(double);
+    if (cache_bytes > options.schur_cache_megabytes * 1024.0 * 1024.0) {
+      y_cached = false;
+      Y.resize(0, 0);
+    }
+    S.conservativeResize(m_, m_);
+    if (y_cached) Y.conservativeResize(nf, m_);
+    constexpr Index block = 64;
+    for (Index c0 = m0; c0 < m_; c0 += block) {
+      const Index k = std::min(block, m_ - c0);
+      const Eigen::MatrixXd rhs = Eigen::MatrixXd(CT_F.middleCols(c0, k));
+      const Eigen::MatrixXd Yk = nf > 0 ? solve_free(rhs) : Eigen::MatrixXd(0, k);
+      report.schur_columns += static_cast<int>(k);
+      // Columns c0..c0+k of S for every constraint so far; mirror into the rows.
+      const Eigen::MatrixXd Sk = CT_F.leftCols(c0 + k).transpose() * Yk;
+      S.block(0, c0, c0 + k, k) = Sk;
+      S.block(c0, 0, k, c0) = Sk.topRows(c0).transpose();
+      if (y_cached) Y.middleCols(c0, k) = Yk;
+    }
+    schur_rows = m_;
+    S_ldlt.compute(S);
+    const Eigen::VectorXd D = S_ldlt.vectorD();
+    const double largest = D.size() > 0 ? D.cwiseAbs().maxCoeff() : 0.0;
+    S_rank = 0;
+    for (Index i = 0; i < D.size(); ++i) S_rank += D[i] > redundant_pivot * largest ? 1 : 0;
+    report.constraint_rank = S_rank;
+  }
+
+  // λ with S λ = g, pivots judged redundant set to zero (a solution whenever the system is consistent).
+  Eigen::MatrixXd schur_solve(const Eigen::MatrixXd& g) const {
+    const Eigen::VectorXd D = S_ldlt.vectorD();
+    const double largest = D.size() > 0 ? D.cwiseAbs().maxCoeff() : 0.0;
+    Eigen::MatrixXd y = S_ldlt.transpositionsP() * g;
+    S_ldlt.matrixL().solveInPlace(y);
+    for (Index i = 0; i < D.size(); ++i) y.row(i) *= D[i] > redundant_pivot * largest ? 1.0 / D[i] : 0.0;
+    S_ldlt.matrixU().solveInPlace(y);
+    return S_ldlt.transpositionsP().transpose() * y;
+  }
+
+  // The constraint rows that take part in a contradiction seen by the right-hand side g (= C_F x0 − e). Each
+  // redundant pivot i of P S Pᵀ = L D Lᵀ gives a null vector z = Pᵀ L⁻ᵀ e_i of S; the system S λ = g is
+  // inconsistent along z when zᵀg ≠ 0, and the rows with z_r ≠ 0 are the ones that disagree.
+  std::vector<Index> conflicting_rows(const Eigen::MatrixXd& g, double tolerance) const {
+    const Eigen::VectorXd D = S_ldlt.vectorD();
+    const double largest = D.size() > 0 ? D.cwiseAbs().maxCoeff() : 0.0;
+    std::vector<bool> involved(static_cast<std::size_t>(m()), false);
+    for (Index i = 0; i < D.size(); ++i) {
+      if (D[i] > redundant_pivot * largest) continue;
+      Eigen::VectorXd z = Eigen::VectorXd::Unit(m(), i);
+      S_ldlt.matrixU().solveInPlace(z);
+      z = S_ldlt.transpositionsP().transpose() * z;
+      z /= z.cwiseAbs().maxCoeff();
+      if ((z.transpose() * g).cwiseAbs().maxCoeff() <= tolerance) continue;
+      for (Index r = 0; r < m(); ++r) involved[static_cast<std::size_t>(r)] = involved[static_cast<std::size_t>(r)] || std::abs(z[r]) > 1e-8;
+    }
+    std::vector<Index> rows;
+    for (Index r = 0; r < m(); ++r) {
+      if (involved[static_cast<std::size_t>(r)]) rows.push_back(r);
+    }
+    return rows;
+  }
+};
+
+ConstrainedLeastSquares::ConstrainedLeastSquares(const SolverOptions& options)
+    : state_(std::make_unique<State>(options)) {}
+
+ConstrainedLeastSquares::~ConstrainedLeastSquares() = default;
+
+void ConstrainedLeastSquares::set_objective(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  State& s = *state_;
+  if (A.cols() != s.n()) {
+    // A new unknown count drops the pins, constraints and hints that referred to the old one.
+    s.pinned.clear();
+    s.CT.resize(A.cols(), 0);
+    s.row_norm.resize(0);
+    s.modes.resize(0, 0);
+  }
+  s.A = A;
+  s.A.makeCompressed();
+  s.analysis_stale = true;
+  set_weights(weights);
+}
+
+void ConstrainedLeastSquares::set_weights(const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  if (weights.size() != state_->A.rows()) {
+    throw std::invalid_argument("ConstrainedLeastSquares: " + std::to_string(weights.size()) + " weights for " +
+                                std::to_string(state_->A.rows()) + " rows");
+  }
+  if (!weights.allFinite() || (weights.array() < 0).any()) {
+    throw std::invalid_argument("ConstrainedLeastSquares: weights must be finite and ≥ 0");
+  }
+  state_->weights = weights;
+  state_->q_stale = true;
+  state_->invalidate_factor();
+}
+
+void ConstrainedLeastSquares::set_pinned(std::vector<Eigen::Index> pinned) {
+  state_->pinned = std::move(pinned);
+  state_->analysis_stale = true;
+  state_->invalidate_factor();
+}
+
+void ConstrainedLeastSquares::set_constraints(const SparseMatrix& C) {
+  state_->CT.resize(state_->n(), 0);
+  state_->row_norm.resize(0);
+  state_->invalidate_schur();
+  add_constraints(C);
+}
+
+void ConstrainedLeastSquares::add_constraints(const SparseMatrix& C) {
+  State& s = *state_;
+  if (C.rows() == 0) return;
+  if (C.cols() != s.n()) {
+    throw std::invalid_argument("ConstrainedLeastSquares: constraints have " + std::to_string(C.cols()) +
+                                " columns, the objective " + std::to_string(s.n()) + " unknowns");
+  }
+  SparseMatrix added = C.transpose();
+  Eigen::VectorXd norms(added.cols());
+  for (Index c = 0; c < added.cols(); ++c) {
+    norms[c] = added.col(c).norm();
+    if (!std::isfinite(norms[c])) throw std::invalid_argument("ConstrainedLeastSquares: constraint row is not finite");
+    if (norms[c] > 0) added.col(c) /= norms[c];
+  }
+  SparseMatrix joined(s.n(), s.m() + added.cols());
+  joined.reserve(s.CT.nonZeros() + added.nonZeros());
+  // Column-major concatenation: copy both blocks column by column.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(s.CT.nonZeros() + added.nonZeros()));
+  for (Index c = 0; c < s.m(); ++c)
+    for (SparseMatrix::InnerIterator it(s.CT, c); it; ++it) entries.emplace_back(it.row(), c, it.value());
+  for (Index c = 0; c < added.cols(); ++c)
+    for (SparseMatrix::InnerIterator it(added, c); it; ++it) entries.emplace_back(it.row(), s.m() + c, it.value());
+  joined.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd all_norms(s.m() + added.cols());
+  all_norms << s.row_norm, norms;
+  s.CT = std::move(joined);
+  s.row_norm = std::move(all_norms);
+  if (!s.analysis_stale) s.split_constraints();
+}
+
+void ConstrainedLeastSquares::clear_constraints() {
+  state_->CT.resize(state_->n(), 0);
+  state_->row_norm.resize(0);
+  state_->invalidate_schur();
+  if (!state_->analysis_stale) state_->split_constraints();
+}
+
+void ConstrainedLeastSquares::set_near_null_space(const Eigen::Ref<const Eigen::MatrixXd>& modes, int block_size) {
+  if (modes.cols() > 0 && modes.rows() != state_->n()) {
+    throw std::invalid_argument("ConstrainedLeastSquares: near-null-space modes have " + std::to_string(modes.rows()) +
+                                " rows for " + std::to_string(state_->n()) + " unknowns");
+  }
+  state_->modes = modes;
+  state_->block_size = std::max(1, block_size);
+  state_->analysis_stale = true;
+  state_->invalidate_factor();
+}
+
+void ConstrainedLeastSquares::precompute() {
+  State& s = *state_;
+  if (s.n() == 0) throw std::invalid_argument("ConstrainedLeastSquares: set_objective() with at least one unknown first");
+  if (s.q_stale) {
+    const auto start = Clock::now();
+    const Index previous_nnz = s.Q.nonZeros();
+    const Index previous_n = s.Q.rows();
+    s.Q = normal_matrix(s.A, s.weights);
+    s.q_stale = false;
+    s.split_stale = true;
+    if (s.Q.nonZeros() != previous_nnz || s.Q.rows() != previous_n) s.analysis_stale = true;
+    s.report.analyze_seconds = seconds_since(start);
+  }
+  if (s.analysis_stale) {
+    const auto start = Clock::now();
+    s.build_pin_maps();
+    s.split_q();
+    s.split_stale = false;
+    s.split_constraints();
+    if (s.free_count() > 0) {
+      s.pass_near_null_space();
+      s.backend->analyze(s.Q_FF);
+    }
+    s.analysis_stale = false;
+    s.factor_stale = true;
+    ++s.report.analyses;
+    s.report.analyze_seconds += seconds_since(start);
+  }
+  if (s.factor_stale) {
+    const auto start = Clock::now();
+    if (s.split_stale) s.split_q();
+    s.split_stale = false;
+    if (s.free_count() > 0) s.factorize();
+    s.factor_stale = false;
+    s.invalidate_schur();
+    ++s.report.factorizations;
+    s.report.factorization = s.backend->factorization_info();
+    s.report.factorize_seconds = seconds_since(start);
+  }
+  if (s.schur_rows < s.m()) {
+    const auto start = Clock::now();
+    s.extend_schur();
+    s.report.schur_seconds = seconds_since(start);
+  }
+}
+
+Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& pin_values,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& d) {
+  State& s = *state_;
+  if (!is_ready()) precompute();
+  const Index k = b.cols();
+  if (b.rows() != s.A.rows() || pin_values.rows() != static_cast<Index>(s.pinned.size()) || d.rows() != s.m() ||
+      (pin_values.cols() != k && pin_values.size() > 0) || (d.cols() != k && d.size() > 0)) {
+    std::ostringstream what;
+    what << "ConstrainedLeastSquares::solve: b is " << b.rows() << "×" << b.cols() << " (expected " << s.A.rows()
+         << " rows), pin values " << pin_values.rows() << "×" << pin_values.cols() << " (expected " << s.pinned.size()
+         << " rows), d " << d.rows() << "×" << d.cols() << " (expected " << s.m() << " rows), same columns";
+    throw std::invalid_argument(what.str());
+  }
+  if (!b.allFinite() || !pin_values.allFinite() || !d.allFinite()) {
+    throw std::invalid_argument("ConstrainedLeastSquares::solve: a right-hand side, pin value or constraint value is not finite");
+  }
+  const auto start = Clock::now();
+  const Index nf = s.free_count();
+  const Eigen::MatrixXd xp = pin_values.size() > 0 ? Eigen::MatrixXd(pin_values) : Eigen::MatrixXd::Zero(s.pinned.size(), k);
+
+  // r = (AᵀW b)_F − Q_FP x_P.
+  const Eigen::MatrixXd AtWb = s.A.transpose() * (s.weights.asDiagonal() * b);
+  Eigen::MatrixXd r(nf, k);
+  for (Index i = 0; i < nf; ++i) r.row(i) = AtWb.row(s.free_unknowns[static_cast<std::size_t>(i)]);
+  if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
+
+  Eigen::MatrixXd xf = nf > 0 ? s.solve_free(r) : Eigen::MatrixXd(0, k);
+  Eigen::MatrixXd d_unit = Eigen::MatrixXd::Zero(s.m(), k);
+  Eigen::MatrixXd g;  // C_F x0 − (d − C_P x_P), the Schur right-hand side
+  if (s.m() > 0) {
+    for (Index c = 0; c < s.m(); ++c) {
+      if (s.row_norm[c] > 0) d_unit.row(c) = d.row(c) / s.row_norm[c];
+    }
+    // S λ = C_F x0 − (d − C_P x_P);  x_F = x0 − Q_FF⁻¹ C_Fᵀ λ.
+    g = s.CT_F.transpose() * xf - d_unit;
+    if (!s.pinned.empty()) g.noalias() += s.CT_P.transpose() * xp;
+    const Eigen::MatrixXd lambda = s.schur_solve(g);
+    if (nf > 0) {
+      if (s.y_cached) {
+        xf.noalias() -= s.Y * lambda;
+      } else {
+        xf = s.solve_free(r - s.CT_F * lambda);
+      }
+    }
+  }
+
+  Eigen::MatrixXd x(s.n(), k);
+  for (Index i = 0; i < nf; ++i) x.row(s.free_unknowns[static_cast<std::size_t>(i)]) = xf.row(i);
+  for (std::size_t p = 0; p < s.pinned.size(); ++p) x.row(s.pinned[p]) = xp.row(static_cast<Index>(p));
+
+  // Every constraint met? (Unit rows: the residual is in the units of x.)
+  s.report.max_constraint_residual = 0;
+  if (s.m() > 0) {
+    const Eigen::MatrixXd residual = s.CT.transpose() * x - d_unit;
+    const double tolerance = s.options.constraint_tolerance * (1.0 + x.cwiseAbs().maxCoeff());
+    std::vector<Index> violated;
+    for (Index c = 0; c < s.m(); ++c) {
+      const double value = s.row_norm[c] > 0 ? residual.row(c).cwiseAbs().maxCoeff() : d.row(c).cwiseAbs().maxCoeff();
+      s.report.max_constraint_residual = std::max(s.report.max_constraint_residual, value);
+      if (value > tolerance) violated.push_back(c);
+    }
+    if (!violated.empty()) {
+      // Name every row of the contradiction, not only the ones the pseudo-inverse happened to leave unmet.
+      std::vector<Index> rows = s.conflicting_rows(g, tolerance);
+      for (Index row : violated) {
+        if (std::find(rows.begin(), rows.end(), row) == rows.end()) rows.push_back(row);
+      }
+      std::sort(rows.begin(), rows.end());
+      std::ostringstream message;
+      message << "the constraints contradict each other or the pins: constraint rows ";
+      for (std::size_t i = 0; i < rows.size() && i < 8; ++i) message << (i ? ", " : "") << rows[i];
+      message << (rows.size() > 8 ? ", ..." : "") << " cannot all be met (largest violation "
+              << s.report.max_constraint_residual << ", tolerance " << tolerance << ")";
+      throw ConstraintError(message.str(), std::move(rows));
+    }
+  }
+  s.report.solve_seconds = seconds_since(start);
+  return x;
+}
+
+Eigen::Index ConstrainedLeastSquares::unknowns() const noexcept { return state_->n(); }
+Eigen::Index ConstrainedLeastSquares::constraints() const noexcept { return state_->m(); }
+const std::vector<Eigen::Index>& ConstrainedLeastSquares::pinned() const noexcept { return state_->pinned; }
+bool ConstrainedLeastSquares::is_ready() const noexcept {
+  const State& s = *state_;
+  return !s.q_stale && !s.analysis_stale && !s.factor_stale && s.schur_rows == s.m();
+}
+const LeastSquaresReport& ConstrainedLeastSquares::report() const noexcept { return state_->report; }
+const SolverOptions& ConstrainedLeastSquares::options() const noexcept { return state_->options; }
+
+Eigen::MatrixXd solve_least_squares(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& b, const std::vector<Eigen::Index>& pinned,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& pin_values, const SparseMatrix& C,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& d, const SolverOptions& options) {
+  ConstrainedLeastSquares solver(options);
+  solver.set_objective(A, weights);
+  solver.set_pinned(pinned);
+  if (C.rows() > 0) solver.set_constraints(C);
+  return solver.solve(b, pin_values, d);
+}
+
+}  // namespace throng::linalg

@@ -1,0 +1,277 @@
+#include "problems.h"
+
+#include <throng/core/errors.h>
+#include <throng/linalg/least_squares.h>
+
+#include <catch2/catch.hpp>
+
+using throng::linalg::ConstrainedLeastSquares;
+using throng::linalg::ConstraintError;
+using throng::linalg::SingularMatrixError;
+using throng::linalg::SolverOptions;
+using throng::linalg::SparseMatrix;
+using namespace throng::test;
+using Eigen::Index;
+
+namespace {
+
+// Problems here have cond(AᵀWA) ≈ 1e2 (n = 60) and the KKT reference adds its own rounding: agreement to
+// 1e-10 relative leaves three orders of margin above ε·cond while catching any wrong term (errors are O(1)).
+constexpr double agree = 1e-10;
+
+double relative_gap(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
+  return (x - y).cwiseAbs().maxCoeff() / (1.0 + y.cwiseAbs().maxCoeff());
+}
+
+SparseMatrix sparse(const Eigen::MatrixXd& dense) { return dense.sparseView(); }
+
+struct Fixture {
+  Index n = 60;
+  SparseMatrix A = random_objective(60, 1);
+  Eigen::VectorXd w = random_weights(180, 2);
+  Eigen::VectorXd b = random_matrix(180, 1, 3);
+  std::vector<Index> pinned{3, 17, 42};
+  Eigen::VectorXd pin_values = random_matrix(3, 1, 4);
+  Eigen::MatrixXd C = [] {
+    Eigen::MatrixXd c = Eigen::MatrixXd::Zero(2, 60);
+    c(0, 5) = 1.0;   // x5 − x6 = d0 (a relative position)
+    c(0, 6) = -1.0;
+    c(1, 10) = 2.0;  // 2 x10 + x11 + x17 = d1 (touches a pinned unknown)
+    c(1, 11) = 1.0;
+    c(1, 17) = 1.0;
+    return c;
+  }();
+  Eigen::VectorXd d = Eigen::Vector2d(0.25, -0.5);
+};
+
+}  // namespace
+
+TEST_CASE("unconstrained least squares matches the dense normal equations") {
+  Fixture f;
+  const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, f.b, {}, Eigen::MatrixXd(0, 1),
+                                                                SparseMatrix(0, f.n), Eigen::MatrixXd(0, 1));
+  const Eigen::VectorXd ref = dense_reference(f.A, f.w, f.b, {}, {}, Eigen::MatrixXd(0, f.n), {});
+  CHECK(relative_gap(x, ref) < agree);
+}
+
+TEST_CASE("pins and general constraints match the dense KKT solution and are met") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(f.C));
+  const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, f.d);
+  const Eigen::VectorXd ref = dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d);
+  CHECK(relative_gap(x, ref) < agree);
+  for (std::size_t k = 0; k < f.pinned.size(); ++k) CHECK(x(f.pinned[k], 0) == f.pin_values[static_cast<Index>(k)]);
+  CHECK((f.C * x - f.d).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(solver.report().constraint_rank == 2);
+}
+
+TEST_CASE("a manufactured solution is recovered exactly") {
+  Fixture f;
+  const Eigen::VectorXd truth = random_matrix(f.n, 1, 9);
+  const Eigen::VectorXd b = f.A * truth;
+  Eigen::VectorXd pins(3);
+  for (int k = 0; k < 3; ++k) pins[k] = truth[f.pinned[static_cast<std::size_t>(k)]];
+  const Eigen::VectorXd d = f.C * truth;
+  const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d);
+  CHECK(relative_gap(x, truth) < agree);
+}
+
+TEST_CASE("new right-hand sides, pin values and constraint values reuse the factorisation") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(f.C));
+  solver.precompute();
+  REQUIRE(solver.report().analyses == 1);
+  REQUIRE(solver.report().factorizations == 1);
+  const int schur_columns = solver.report().schur_columns;
+
+  for (std::uint64_t drag = 0; drag < 4; ++drag) {
+    const Eigen::VectorXd b = random_matrix(180, 1, 100 + drag);
+    const Eigen::VectorXd pins = random_matrix(3, 1, 200 + drag);
+    const Eigen::VectorXd d = random_matrix(2, 1, 300 + drag);
+    const Eigen::MatrixXd x = solver.solve(b, pins, d);
+    // The reused factorisation gives the same bits as a fresh solver.
+    const Eigen::MatrixXd fresh = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d);
+    CHECK(x == fresh);
+    CHECK(relative_gap(x, dense_reference(f.A, f.w, b, f.pinned, pins, f.C, d)) < agree);
+  }
+  CHECK(solver.report().analyses == 1);
+  CHECK(solver.report().factorizations == 1);
+  CHECK(solver.report().schur_columns == schur_columns);
+}
+
+TEST_CASE("several right-hand sides at once equal one at a time") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(f.C));
+  const Eigen::MatrixXd B = random_matrix(180, 3, 11);
+  const Eigen::MatrixXd P = random_matrix(3, 3, 12);
+  const Eigen::MatrixXd D = random_matrix(2, 3, 13);
+  const Eigen::MatrixXd X = solver.solve(B, P, D);
+  for (Index c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd one = solver.solve(B.col(c), P.col(c), D.col(c));
+    CHECK(relative_gap(X.col(c), one) < 1e-14);
+  }
+}
+
+TEST_CASE("added constraints cost back-substitutions, not a refactorisation") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(f.C.topRows(1)));
+  solver.precompute();
+  const int columns_before = solver.report().schur_columns;
+  solver.add_constraints(sparse(f.C.bottomRows(1)));
+  CHECK_FALSE(solver.is_ready());
+  const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, f.d);
+  CHECK(solver.report().factorizations == 1);
+  CHECK(solver.report().analyses == 1);
+  CHECK(solver.report().schur_columns == columns_before + 1);
+  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < agree);
+
+  solver.clear_constraints();
+  const Eigen::MatrixXd free = solver.solve(f.b, f.pin_values, Eigen::MatrixXd(0, 1));
+  CHECK(solver.report().factorizations == 1);
+  CHECK(relative_gap(free, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < agree);
+}
+
+TEST_CASE("without the Schur cache the answer is the same") {
+  Fixture f;
+  SolverOptions no_cache;
+  no_cache.schur_cache_megabytes = 0;
+  const Eigen::MatrixXd cached = throng::linalg::solve_least_squares(f.A, f.w, f.b, f.pinned, f.pin_values, sparse(f.C), f.d);
+  const Eigen::MatrixXd uncached =
+      throng::linalg::solve_least_squares(f.A, f.w, f.b, f.pinned, f.pin_values, sparse(f.C), f.d, no_cache);
+  CHECK(relative_gap(uncached, cached) < agree);
+}
+
+TEST_CASE("new weights refactorise without a new analysis; a new pinned set analyses again") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.precompute();
+  const Eigen::VectorXd w2 = random_weights(180, 77);
+  solver.set_weights(w2);
+  const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, Eigen::MatrixXd(0, 1));
+  CHECK(solver.report().analyses == 1);
+  CHECK(solver.report().factorizations == 2);
+  CHECK(relative_gap(x, dense_reference(f.A, w2, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < agree);
+
+  solver.set_pinned({0, 1});
+  const Eigen::MatrixXd y = solver.solve(f.b, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 1));
+  CHECK(solver.report().analyses == 2);
+  CHECK(relative_gap(y, dense_reference(f.A, w2, f.b, {0, 1}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, f.n), {})) < agree);
+}
+
+TEST_CASE("redundant but consistent constraints are accepted") {
+  Fixture f;
+  Eigen::MatrixXd C(3, f.n);
+  C << f.C, 3.0 * f.C.row(0);  // the third row is the first, scaled
+  const Eigen::Vector3d d(f.d[0], f.d[1], 3.0 * f.d[0]);
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(C));
+  const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, d);
+  CHECK(solver.report().constraint_rank == 2);
+  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < agree);
+}
+
+TEST_CASE("contradictory constraints are a ConstraintError naming the rows") {
+  Fixture f;
+  Eigen::MatrixXd C(3, f.n);
+  C << f.C, f.C.row(0);
+  const Eigen::Vector3d d(f.d[0], f.d[1], f.d[0] + 1.0);  // x5 − x6 = 0.25 and x5 − x6 = 1.25
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(C));
+  try {
+    (void)solver.solve(f.b, f.pin_values, d);
+    FAIL("contradictory constraints were accepted");
+  } catch (const ConstraintError& e) {
+    CHECK(std::find(e.rows().begin(), e.rows().end(), 0) != e.rows().end());
+    CHECK(std::find(e.rows().begin(), e.rows().end(), 2) != e.rows().end());
+    CHECK(e.exit_code() == throng::ExitCode::not_converged);
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("contradict"));
+  }
+}
+
+TEST_CASE("a constraint on pinned unknowns that disagrees with the pins is a ConstraintError") {
+  Fixture f;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(1, f.n);
+  C(0, 3) = 1.0;  // x3 is pinned
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned(f.pinned);
+  solver.set_constraints(sparse(C));
+  const Eigen::VectorXd consistent = Eigen::VectorXd::Constant(1, f.pin_values[0]);
+  CHECK_NOTHROW(solver.solve(f.b, f.pin_values, consistent));
+  CHECK_THROWS_AS(solver.solve(f.b, f.pin_values, consistent.array() + 0.5), ConstraintError);
+}
+
+TEST_CASE("an undetermined unknown is a singular system naming it") {
+  // A graph Laplacian of a path (differences of neighbours): translation is free until something is pinned.
+  const Index n = 30;
+  std::vector<Eigen::Triplet<double>> t;
+  for (Index i = 0; i + 1 < n; ++i) {
+    t.emplace_back(i, i, -1.0);
+    t.emplace_back(i, i + 1, 1.0);
+  }
+  SparseMatrix A(n - 1, n);
+  A.setFromTriplets(t.begin(), t.end());
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(n - 1);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n - 1);
+
+  ConstrainedLeastSquares solver;
+  solver.set_objective(A, w);
+  CHECK_THROWS_AS(solver.precompute(), SingularMatrixError);
+  solver.set_pinned({0});
+  const Eigen::MatrixXd x = solver.solve(b, Eigen::VectorXd::Constant(1, 2.0), Eigen::MatrixXd(0, 1));
+  for (Index i = 0; i < n; ++i) CHECK_THAT(x(i, 0), Catch::Matchers::WithinAbs(2.0 + static_cast<double>(i), 1e-12));
+
+  // An unknown that no row mentions.
+  SparseMatrix wider(n - 1, n + 1);
+  wider.leftCols(n) = A;
+  solver.set_objective(wider, w);
+  solver.set_pinned({0});
+  try {
+    solver.precompute();
+    FAIL("a free unknown outside the objective was accepted");
+  } catch (const SingularMatrixError& e) {
+    CHECK(e.exit_code() == throng::ExitCode::not_converged);
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("singular"));
+  }
+}
+
+TEST_CASE("everything pinned needs no factorisation") {
+  Fixture f;
+  std::vector<Index> all(static_cast<std::size_t>(f.n));
+  for (Index i = 0; i < f.n; ++i) all[static_cast<std::size_t>(i)] = i;
+  const Eigen::VectorXd values = random_matrix(f.n, 1, 5);
+  const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, f.b, all, values, SparseMatrix(0, f.n),
+                                                                Eigen::MatrixXd(0, 1));
+  CHECK(x == values);
+}
+
+TEST_CASE("malformed calls are rejected before any work") {
+  Fixture f;
+  ConstrainedLeastSquares solver;
+  solver.set_objective(f.A, f.w);
+  solver.set_pinned({3, 3});
+  CHECK_THROWS_AS(solver.precompute(), std::invalid_argument);
+  solver.set_pinned({f.n});
+  CHECK_THROWS_AS(solver.precompute(), std::invalid_argument);
+  CHECK_THROWS_AS(solver.set_weights(-f.w), std::invalid_argument);
+  solver.set_pinned({});
+  CHECK_THROWS_AS(solver.solve(f.b.head(10), Eigen::MatrixXd(0, 1), Eigen::MatrixXd(0, 1)), std::invalid_argument);
+}
