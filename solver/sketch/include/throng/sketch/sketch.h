@@ -1,0 +1,282 @@
+// Stroke-driven crowds: a few drawn strokes become per-agent crowd parameters, then an agent simulation.
+//
+// Paper: Ogiwara & Oshita, "Pen-based Interface for Crowd Animation" (seed 003), read with METHODS.md §3.
+// Pipeline (each step is an entry point below, so tests and tools can look at the intermediate values):
+//
+//   strokes ──analyse_strokes──▶ Course            per main-line point k: path q_{1,k}, offsets V_{i,k} (Eq. 1, 4),
+//                                                   speed v_k (Eq. 5), width W_k and standard distance s_k (Eq. 6–7),
+//                                                   irregularity E_k (Eq. 8–12)
+//   Course + start positions ──agent_parameters──▶ AgentParameters   weights o_{j,i} (Eq. 2–3), draws u_j (Eq. 13)
+//   (no positions) ──place_agents──▶ start positions between the outermost auxiliary lines
+//   Simulation: path following, agent and obstacle avoidance, step (Eq. 14–22)
+//   simulate(): all of the above, sampled into a CrowdMotion at the output rate.
+//
+// Decisions where the paper is unclear or wrong (METHODS.md §3 "Reading" and our own):
+// - Strokes live in the ground plane (x, y); the output has z = 0. Times are seconds, lengths metres.
+// - Correspondence: every auxiliary stroke is resampled by normalised arc length to the main line's K points.
+// - Consecutive main-line points at the same place (a pen pause) are merged into the first one: the pause time
+//   then belongs to the next segment, which becomes slower (Eq. 5 would otherwise give v = 0 and stall agents).
+// - Eq. 1 is a moving average over [k−δ, k+δ], the window shrunk symmetrically near the ends so the drawn end
+//   points are kept. Eq. 9–10 use the window [k−δ, k+δ] over the K−1 segment values G, truncated at the ends
+//   (a shrunk window would make the variance 0 there); VAR is the variance around the window's mean AVG.
+// - Eq. 2–3: l_{j,i} is the distance from agent j's start to the polyline of stroke i as the targets use it
+//   (main line, smoothed auxiliary line). Strokes at distance 0 share all the weight.
+// - Eq. 6: "side" is the sign of the cross product of the main line's tangent with the offset; a side with no
+//   auxiliary point uses the main line itself (so one auxiliary line gives W = its distance to the main line).
+// - Eq. 13: e_{j,k} = u_j · min(E_k / E_MAX, 1) with u_j ~ U(0.5, 1) drawn once per agent from
+//   Rng(derive_seed(seed, j)), so agent j's draw does not depend on the agent count or the thread count.
+// - Eq. 15: r_{j,k} = s_k (1 + e_{j,k}) (the text's s·e would switch avoidance off for smooth strokes).
+// - Eq. 16, 18: repulsion (p_j − p_l)(r/d − 1), of length r − d. Obstacles generalise the paper's circles by the
+//   signed distance to the boundary b (core's distance_to) and its outward normal n: n · (r_block − b) when
+//   b < r_block, which is exactly Eq. 18 for a circle of radius ρ with r_block,x = ρ + obstacle_distance_m.
+//   Beyond the paper (Options::slide_around_obstacles): Eq. 18's push is radial, so an agent whose path force
+//   points into an obstacle (walking head-on into it, or its target lies inside it) is held in front of it for
+//   good. Then the path force is turned along the boundary of the most pressing obstacle, keeping its length:
+//   forward along the course; facing the boundary square-on (within cos 0.1), round the side of the obstacle's
+//   centre the agent is on (neighbours split the same way, so the two flows never meet; on the centre line the
+//   side the pull leans to, else by agent parity) — and the agent keeps that side from step to step until it
+//   loses contact, so it does not dither.
+// - Eq. 21: the paper's per-step v becomes v_k Δt with v_k in m/s, k the agent's current target index (v_0 = v_1).
+// - Target advancement: after the move, while the agent is within R of its target OR has passed it (is ahead of
+//   the line through the target across the main line's direction there), the target moves on — several points
+//   in one step when points are denser than the step. The paper advances only within R; then agents pushed past
+//   their target by the agents behind are pulled back to it and a dense crowd deadlocks (observed on the paper
+//   experiment, which stalled mid-course). Reaching or passing the last point is arrival. The same rule places
+//   given start positions on their path: an agent ahead of the first points starts from the first one ahead.
+// - No agent ends a step inside an obstacle: a move is cut where it would first enter an obstacle grown by the
+//   agent radius (checked at intervals of half the radius, so thin walls cannot be jumped), then the agent is
+//   projected out of every obstacle it still overlaps at the step's end time (moving obstacles push agents).
+//   If projections conflict (a gap narrower than the agent) the agent keeps its previous position when that is
+//   clear, else the best position found is kept and counted in SimulationResult::unresolved_obstacle_contacts.
+// - End of path: `stop` — the agent stops walking and stands; standing agents make room: each step they move
+//   by half their summed overlap with agents (Eq. 16 terms) and obstacles (Eq. 18 terms), at most v Δt, so later
+//   arrivals can reach the end (a frozen crowd at the end blocks them forever) and a standing crowd settles
+//   without the jitter of Eq. 21's constant step. `remove` — the agent is present at the step it arrives and
+//   absent (NaN) from the next one.
+// - Determinism: every agent reads only the previous state (two buffers); neighbour sums run in a fixed order
+//   (grid cells, then agent index); random draws come from per-agent streams. Same bits for any thread count.
+#pragma once
+
+#include <throng/core/crowd_motion.h>
+#include <throng/core/progress.h>
+#include <throng/core/scene.h>
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace throng::sketch {
+
+/// A drawn stroke: a polyline in the ground plane and the time each point was drawn.
+///   points  #points, metres
+///   times   #points, seconds; strictly increasing on the main stroke (its timing sets the crowd's speed);
+///           may be empty on auxiliary strokes (not used there)
+struct Stroke {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<double> times;
+};
+
+/// What the user drew, and optionally where the agents start.
+///   strokes            stroke 0 is the main line; strokes 1.. are auxiliary lines (at least one)
+///   initial_positions  #agents start positions (metres); empty: Options::agent_count agents are placed
+///                      automatically between the outermost auxiliary lines (place_agents)
+struct Drawing {
+  std::vector<Stroke> strokes;
+  std::vector<Eigen::Vector2d> initial_positions;
+};
+
+/// What an agent does when it reaches the last point of its path.
+enum class EndOfPath { stop, remove };
+
+/// Every parameter of the method, with the defaults used when a job does not set it.
+struct Options {
+  // --- Strokes to parameters (paper §4) ---
+  /// δ of Eq. 1, 9, 10: the moving windows span δ main-line points on each side.
+  int smoothing_window = 5;
+  /// > 0: resample the main line to this arc-length spacing (metres) before anything else, times linear in arc
+  /// length (speeds are kept), so δ means the same on strokes drawn at any sampling rate. 0: use points as drawn.
+  double resample_spacing_m = 0.0;
+  /// Multiplies the drawing speed of Eq. 5 (a drawing made at a different pace than the crowd should walk).
+  double speed_scale = 1.0;
+  /// Eq. 7: at widths W ≤ narrow_width_m the standard distance is narrow_distance_m, at W ≥ wide_width_m it is
+  /// wide_distance_m, linear in between (metres).
+  double narrow_width_m = 2.0;
+  double wide_width_m = 20.0;
+  double narrow_distance_m = 0.7;
+  double wide_distance_m = 2.0;
+  /// α of Eq. 12 (E_k = α VAR_k; VAR is dimensionless: a variance of distance change per metre).
+  double irregularity_gain = 1.0;
+  /// E_MAX of Eq. 13: irregularity at which the correction is full (e_{j,k} = u_j).
+  double irregularity_max = 0.2;
+
+  // --- Agents ---
+  /// Agents placed automatically when the drawing gives no initial positions.
+  std::size_t agent_count = 50;
+  /// Agent body radius (metres): written to the output, kept clear of obstacles.
+  double agent_radius_m = 0.25;
+  /// Seed of the per-agent draws u_j (Eq. 13).
+  std::uint64_t seed = 1;
+
+  // --- Simulation (paper §5) ---
+  /// R of Eq. 14 (metres): no pull within R of the target; the target advances when the agent is within R.
+  double follow_radius_m = 1.0;
+  /// Distance from an obstacle's boundary (metres) inside which an agent is pushed away (r_block − ρ, Eq. 18).
+  double obstacle_distance_m = 0.5;
+  /// Slide around obstacles: when the path force (Eq. 14) points into an obstacle within obstacle_distance_m, it
+  /// is turned along the obstacle's boundary, forward along the course (see the header comment). false is the
+  /// paper's model, in which an agent walking into an obstacle, or whose target lies inside one, stops there.
+  bool slide_around_obstacles = true;
+  /// Weights of Eq. 20 (paper: 1 : 2 : 2). avoid_weight = 0 switches agent avoidance off.
+  double trajectory_weight = 1.0;
+  double avoid_weight = 2.0;
+  double obstacle_weight = 2.0;
+  /// Simulation time step Δt (seconds). Eq. 21 moves every walking agent a full v Δt each step, so agents held
+  /// in balance jitter by about v Δt: 0.04 s keeps that near 5 cm at walking speed.
+  double time_step_s = 0.04;
+  /// Output frames per second (frames are exact positions on the piecewise-linear simulated motion).
+  double output_rate_hz = 25.0;
+  /// Seconds to simulate; 0: until every agent has finished its path, at most max_duration_s.
+  double duration_s = 0.0;
+  double max_duration_s = 600.0;
+  EndOfPath end_of_path = EndOfPath::stop;
+};
+
+/// Throws ConfigError naming the first field with an impossible value, its value and what is expected.
+void validate(const Options& options);
+
+/// The shared parameters along the course, one entry per main-line point k = 0..K−1 (after merging pen pauses
+/// and the optional resampling).
+///   main          K points q_{1,k}; main_times K seconds (as drawn, strictly increasing)
+///   auxiliary     #aux by K: auxiliary strokes resampled to the main line's points (raw, for Eq. 8)
+///   smoothed      #aux by K: the same after Eq. 1 (q̄_{i,k})
+///   speed         K, v_k of Eq. 5 in m/s (speed_scale applied; v_0 = v_1)
+///   width         K, W_k of Eq. 6 (metres);  standard_distance  K, s_k of Eq. 7 (metres)
+///   distance_change  #aux by K−1, G_{i,k} of Eq. 8 (dimensionless)
+///   irregularity  K, E_k of Eq. 12;  correction_scale  K, min(E_k / E_MAX, 1) (Eq. 13 without u_j)
+struct Course {
+  std::vector<Eigen::Vector2d> main;
+  std::vector<double> main_times;
+  std::vector<std::vector<Eigen::Vector2d>> auxiliary;
+  std::vector<std::vector<Eigen::Vector2d>> smoothed;
+  std::vector<double> speed;
+  std::vector<double> width;
+  std::vector<double> standard_distance;
+  std::vector<std::vector<double>> distance_change;
+  std::vector<double> irregularity;
+  std::vector<double> correction_scale;
+
+  [[nodiscard]] std::size_t point_count() const noexcept { return main.size(); }
+  [[nodiscard]] std::size_t auxiliary_count() const noexcept { return smoothed.size(); }
+  /// V_{i,k} of Eq. 4 for auxiliary line `aux` (0-based among auxiliaries): q̄_{i,k} − q_{1,k}.
+  [[nodiscard]] Eigen::Vector2d offset(std::size_t aux, std::size_t k) const { return smoothed[aux][k] - main[k]; }
+};
+
+/// Checks the strokes (at least a main and one auxiliary; ≥ 2 points; finite values; main times strictly
+/// increasing; no zero-length stroke) and computes the Course. Throws InputError naming the stroke, the point
+/// and the value; ConfigError for bad options.
+[[nodiscard]] Course analyse_strokes(const std::vector<Stroke>& strokes, const Options& options);
+
+/// Per-agent parameters.
+///   start          #agents start positions p_{j,0}
+///   weights        #agents by #strokes, o_{j,i} of Eq. 2–3 (column 0: the main line); rows sum to 1
+///   correction_draw  #agents, u_j in [0.5, 1) of Eq. 13
+///   first_target   #agents, the target index each agent starts from (0 for given positions; the placement row's
+///                  point for automatic placement, so agents placed along the course do not walk back)
+struct AgentParameters {
+  std::vector<Eigen::Vector2d> start;
+  Eigen::MatrixXd weights;
+  std::vector<double> correction_draw;
+  std::vector<std::size_t> first_target;
+
+  [[nodiscard]] std::size_t agent_count() const noexcept { return start.size(); }
+};
+
+/// Weights and draws for agents starting at `start` (first_target 0). Throws InputError for a non-finite start.
+[[nodiscard]] AgentParameters agent_parameters(const Course& course, const std::vector<Eigen::Vector2d>& start,
+                                               const Options& options);
+
+/// `count` agents placed between the outermost (smoothed) auxiliary lines, in rows across the course starting at
+/// its first point and going forward along it. In each row the agents are s_k apart (s_k at that point, Eq. 7),
+/// rows s_k·√3/2 apart and staggered (a hexagonal packing); a slot is skipped when it is closer than s to an agent
+/// already placed or within max(obstacle_distance_m, agent_radius_m) of an obstacle at time 0. Deterministic.
+/// first_target is the row's main-line point. Throws ConfigError (agent_count) when the course cannot hold them.
+[[nodiscard]] AgentParameters place_agents(const Course& course, std::size_t count, const Scene& scene,
+                                           const Options& options);
+
+/// p'_{j,k} of Eq. 4: q_{1,k} + Σ_i o_{j,i} V_{i,k}.
+[[nodiscard]] Eigen::Vector2d target_point(const Course& course, const AgentParameters& agents, std::size_t agent,
+                                           std::size_t k);
+/// r_{j,k} of Eq. 15 (read): s_k (1 + u_j · min(E_k / E_MAX, 1)).
+[[nodiscard]] double avoidance_distance(const Course& course, const AgentParameters& agents, std::size_t agent,
+                                        std::size_t k);
+
+/// Where an agent is in its life.
+enum class AgentStatus : std::uint8_t { walking, arrived, removed };
+
+/// The agent simulation of paper §5, one time step at a time (two buffers, TBB-parallel, same bits for any
+/// thread count; the thread count is set by the caller, e.g. with throng::ThreadLimit).
+class Simulation {
+ public:
+  /// Validates the options and the scene (InputError) and checks that no agent starts with its centre inside an
+  /// obstacle (InputError naming the agent and obstacle); agents overlapping an obstacle are projected out.
+  Simulation(Course course, AgentParameters agents, Scene scene, Options options);
+  ~Simulation();
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+
+  /// Advances by Options::time_step_s.
+  void step();
+
+  [[nodiscard]] std::size_t agent_count() const noexcept;
+  [[nodiscard]] std::size_t step_count() const noexcept;
+  /// Seconds since the start (step_count · Δt).
+  [[nodiscard]] double time() const noexcept;
+  /// True when no agent is walking any more (and, with EndOfPath::remove, every one has been removed).
+  [[nodiscard]] bool finished() const noexcept;
+
+  [[nodiscard]] Eigen::Vector2d position(std::size_t agent) const;
+  [[nodiscard]] AgentStatus status(std::size_t agent) const;
+  [[nodiscard]] std::size_t target_index(std::size_t agent) const;
+  /// Time the agent reached the end of its path (seconds), NaN if it has not.
+  [[nodiscard]] double arrival_time(std::size_t agent) const;
+  /// Mean fraction of the path done over all agents, in [0, 1], non-decreasing.
+  [[nodiscard]] double path_fraction() const;
+  /// Agent-steps so far that ended overlapping an obstacle because projections conflicted (see header).
+  [[nodiscard]] std::size_t unresolved_obstacle_contacts() const noexcept;
+
+  /// Writes the positions at time `time` into `frame` (#agents by 3, z = 0; NaN for absent agents), linear
+  /// between the previous step and the current one (the simulated motion is linear within a step).
+  /// Requires time() − Δt ≤ `time` ≤ time() (or `time` = 0 before the first step). The obstacle guarantee holds
+  /// at step times; a frame between steps lies on the straight move, which can cut a convex corner of the grown
+  /// obstacle by at most (v Δt)² / (8 agent_radius_m) (1.6 mm at 1.4 m/s, Δt = 0.04 s, 0.25 m).
+  void sample(double time, std::span<double> frame) const;
+
+  [[nodiscard]] const Course& course() const noexcept;
+  [[nodiscard]] const AgentParameters& agents() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// What simulate() returns.
+///   motion          frames at Options::output_rate_hz from time 0; ids 0..N−1, radii agent_radius_m, species 0
+///   arrival_time_s  #agents, when each agent reached its path's end (NaN: it did not within the duration)
+struct SimulationResult {
+  CrowdMotion motion;
+  std::vector<double> arrival_time_s;
+  std::size_t step_count = 0;
+  std::size_t unresolved_obstacle_contacts = 0;
+  bool finished = false;  ///< every agent finished its path before the duration ran out
+};
+
+/// The whole method: analyse the strokes, place or take the agents, simulate, sample. Reports progress.
+[[nodiscard]] SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options,
+                                        Progress& progress);
+[[nodiscard]] SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options);
+
+}  // namespace throng::sketch

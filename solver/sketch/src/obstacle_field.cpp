@@ -1,0 +1,143 @@
+#include "obstacle_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace throng::sketch::detail {
+namespace {
+
+// A body overlaps an obstacle when its centre is closer than radius − this to the boundary (metres).
+// Projection puts it at exactly the radius, so rounding never makes a projected agent "overlap" again.
+constexpr double contact_tolerance_m = 1e-9;
+// Projection passes over the nearby obstacles before falling back.
+constexpr int projection_passes = 8;
+// Facing a boundary within this cosine of square-on, the agent keeps its side instead of going "forward".
+constexpr double square_on = 0.1;
+
+}  // namespace
+
+void ObstacleField::rebuild(const NeighbourGrid& grid, double t0, double t1) {
+  grid_ = &grid;
+  boxes_.clear();
+  ids_.clear();
+  start_.assign(grid.cell_count() + 1, 0);
+  if (scene_.obstacles.empty()) return;
+  const double grow = std::max(reach_, radius_);
+  struct Span {
+    std::size_t c0, c1, r0, r1;
+  };
+  std::vector<Span> spans;
+  spans.reserve(scene_.obstacles.size());
+  for (const Obstacle& o : scene_.obstacles) {
+    const Eigen::AlignedBox2d b = bounds_over(o, t0, t1);
+    boxes_.emplace_back(b.min() - Eigen::Vector2d(grow, grow), b.max() + Eigen::Vector2d(grow, grow));
+    const Eigen::AlignedBox2d& g = boxes_.back();
+    spans.push_back({grid.column(g.min().x()), grid.column(g.max().x()), grid.row(g.min().y()), grid.row(g.max().y())});
+  }
+  // Two passes (count, fill) into a compressed row layout, obstacles in index order within a cell.
+  const std::size_t nx = grid.columns();
+  for (const Span& s : spans) {
+    for (std::size_t r = s.r0; r <= s.r1; ++r) {
+      for (std::size_t c = s.c0; c <= s.c1; ++c) ++start_[r * nx + c + 1];
+    }
+  }
+  for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+  ids_.resize(start_.back());
+  std::vector<std::uint32_t> cursor(start_.begin(), start_.end() - 1);
+  for (std::uint32_t o = 0; o < spans.size(); ++o) {
+    const Span& s = spans[o];
+    for (std::size_t r = s.r0; r <= s.r1; ++r) {
+      for (std::size_t c = s.c0; c <= s.c1; ++c) ids_[cursor[r * nx + c]++] = o;
+    }
+  }
+}
+
+ObstacleResponse ObstacleField::respond(const Eigen::Vector2d& p, double t, const Eigen::Vector2d& pull,
+                                        const Eigen::Vector2d& heading, std::int8_t side, std::uint32_t agent) const {
+  ObstacleResponse r;
+  r.pull = pull;
+  double pressing = std::numeric_limits<double>::infinity();
+  ObstacleDistance contact;
+  Eigen::Vector2d contact_centre{0, 0};
+  for_each_near(p, [&](std::uint32_t o, const Obstacle& obstacle) {
+    const ObstacleDistance d = distance_to(obstacle, p, t);
+    if (d.signed_distance >= reach_) return;
+    r.push += (reach_ - d.signed_distance) * d.normal;
+    if (slide_ && d.normal.dot(pull) < 0 && d.signed_distance < pressing) {
+      pressing = d.signed_distance;
+      contact = d;
+      contact_centre = boxes_[o].center();
+    }
+  });
+  if (!std::isfinite(pressing)) return r;  // no contact: the side is forgotten
+
+  // Slide: the pull turned along the boundary of the most pressing obstacle, its length kept.
+  Eigen::Vector2d tangent(-contact.normal.y(), contact.normal.x());
+  const Eigen::Vector2d left(-heading.y(), heading.x());
+  const double forward = tangent.dot(heading);
+  if (std::abs(forward) > square_on) {
+    if (forward < 0) tangent = -tangent;
+  } else {
+    if (side == 0) {
+      const double lean = pull.dot(left);
+      const double offset = left.dot(p - contact_centre);
+      side = offset != 0 ? (offset > 0 ? 1 : -1) : lean != 0 ? (lean > 0 ? 1 : -1) : (agent % 2 == 0 ? 1 : -1);
+    }
+    if (tangent.dot(left) * side < 0) tangent = -tangent;
+  }
+  r.side = side != 0 ? side : (tangent.dot(left) >= 0 ? 1 : -1);
+  r.pull = pull.norm() * tangent;
+  return r;
+}
+
+Eigen::Vector2d ObstacleField::push(const Eigen::Vector2d& p, double t) const {
+  Eigen::Vector2d f = Eigen::Vector2d::Zero();
+  for_each_near(p, [&](std::uint32_t, const Obstacle& obstacle) {
+    const ObstacleDistance d = distance_to(obstacle, p, t);
+    if (d.signed_distance < reach_) f += (reach_ - d.signed_distance) * d.normal;
+  });
+  return f;
+}
+
+bool ObstacleField::overlaps(const Eigen::Vector2d& p, double t) const {
+  bool hit = false;
+  for_each_near(p, [&](std::uint32_t, const Obstacle& obstacle) {
+    if (!hit) hit = distance_to(obstacle, p, t).signed_distance < radius_ - contact_tolerance_m;
+  });
+  return hit;
+}
+
+bool ObstacleField::keep_clear(Eigen::Vector2d from, Eigen::Vector2d& to, double t) const {
+  const Eigen::Vector2d move = to - from;
+  const double length = move.norm();
+  const double spacing = 0.5 * radius_;
+  if (length > spacing) {
+    const auto samples = static_cast<int>(std::ceil(length / spacing));
+    for (int i = 1; i < samples; ++i) {
+      if (overlaps(from + (static_cast<double>(i) / samples) * move, t)) {
+        to = from + (static_cast<double>(i - 1) / samples) * move;
+        break;
+      }
+    }
+  }
+  for (int pass = 0; pass < projection_passes; ++pass) {
+    bool moved = false;
+    for_each_near(to, [&](std::uint32_t, const Obstacle& obstacle) {
+      const ObstacleDistance d = distance_to(obstacle, to, t);
+      if (d.signed_distance < radius_ - contact_tolerance_m) {
+        to = d.nearest + radius_ * d.normal;
+        moved = true;
+      }
+    });
+    if (!moved) return true;
+  }
+  if (!overlaps(to, t)) return true;
+  if (!overlaps(from, t)) {
+    to = from;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace throng::sketch::detail

@@ -1,0 +1,437 @@
+// The agent simulation of paper §5 (Eq. 14–22 as read in sketch.h): a two-buffer step over agents sorted by
+// grid cell, TBB-parallel over slot ranges. Each agent reads only the state at the step's start and writes only
+// its own entries of the next state, so the result does not depend on the thread count.
+#include <throng/core/errors.h>
+#include <throng/core/obstacle.h>
+#include <throng/core/parallel.h>
+#include <throng/core/random.h>
+#include <throng/sketch/sketch.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "neighbour_grid.h"
+#include "obstacle_field.h"
+
+namespace throng::sketch {
+namespace {
+
+// Agents per parallel task.
+constexpr std::size_t grain = 512;
+
+constexpr std::uint8_t walking = static_cast<std::uint8_t>(AgentStatus::walking);
+constexpr std::uint8_t arrived = static_cast<std::uint8_t>(AgentStatus::arrived);
+constexpr std::uint8_t removed = static_cast<std::uint8_t>(AgentStatus::removed);
+
+// The agents' state at one time: positions (metres), target index, status, and the side each agent goes round
+// the obstacle it is sliding along (+1 left, −1 right, 0 none). Structure of arrays.
+struct State {
+  std::vector<double> x, y;
+  std::vector<std::uint32_t> k;
+  std::vector<std::uint8_t> status;
+  std::vector<std::int8_t> side;
+};
+
+// A unit direction for two agents at the same place: fixed by the pair, opposite for the two of them.
+Eigen::Vector2d coincident_direction(std::uint32_t self, std::uint32_t other) {
+  const std::uint64_t lo = std::min(self, other), hi = std::max(self, other);
+  const double angle = 2 * std::numbers::pi * static_cast<double>(derive_seed(lo, hi) >> 11) * 0x1.0p-53;
+  const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
+  return self < other ? d : Eigen::Vector2d(-d);
+}
+
+}  // namespace
+
+struct Simulation::Impl {
+  Course course;
+  AgentParameters agents;
+  Scene scene;
+  Options options;
+  std::size_t K = 0, A = 0, N = 0;
+
+  // The course and the agents' parameters, flattened for the step.
+  std::vector<double> main_x, main_y;               // K
+  std::vector<double> offset_x, offset_y;           // K by A: V_{i,k}
+  std::vector<double> speed, standard, correction;  // K
+  std::vector<double> tangent_x, tangent_y;         // K: unit direction of the main line at k (central difference)
+  std::vector<double> weight;                       // N by A: o_{j,i} of the auxiliary lines
+  std::vector<double> draw;                         // N: u_j
+
+  std::array<State, 2> states;
+  int current = 0;
+  std::vector<double> arrival;        // N, seconds or NaN
+  std::vector<std::uint8_t> in_grid;  // N
+  detail::NeighbourGrid grid;
+  detail::ObstacleField obstacles;
+  std::size_t steps = 0;
+  std::atomic<std::size_t> unresolved{0};
+  std::size_t walking_count = 0, arrived_count = 0;
+  double largest_avoidance = 0;  // max r over walking agents: the grid's cell size
+
+  Impl(Course course_in, AgentParameters agents_in, Scene scene_in, Options options_in);
+
+  [[nodiscard]] State& now() { return states[static_cast<std::size_t>(current)]; }
+  [[nodiscard]] const State& now() const { return states[static_cast<std::size_t>(current)]; }
+  [[nodiscard]] const State& previous() const { return states[static_cast<std::size_t>(1 - current)]; }
+  [[nodiscard]] double time_at(std::size_t step) const { return static_cast<double>(step) * options.time_step_s; }
+
+  // p'_{j,k} (Eq. 4).
+  [[nodiscard]] Eigen::Vector2d target(std::uint32_t j, std::uint32_t k) const {
+    double x = main_x[k], y = main_y[k];
+    const double* w = weight.data() + static_cast<std::size_t>(j) * A;
+    const double* ox = offset_x.data() + static_cast<std::size_t>(k) * A;
+    const double* oy = offset_y.data() + static_cast<std::size_t>(k) * A;
+    for (std::size_t i = 0; i < A; ++i) {
+      x += w[i] * ox[i];
+      y += w[i] * oy[i];
+    }
+    return {x, y};
+  }
+  // r_{j,k} (Eq. 15 as read).
+  [[nodiscard]] double avoidance(std::uint32_t j, std::uint32_t k) const {
+    return standard[k] * (1.0 + draw[j] * correction[k]);
+  }
+
+  // Σ over agents closer than r to p of (p − p_l)(r/d − 1) (Eq. 16–17 as read); `slot` is the agent's own
+  // grid slot (skipped).
+  [[nodiscard]] Eigen::Vector2d agent_repulsion(std::size_t slot, const Eigen::Vector2d& p, double r) const;
+  // Advances the agents in grid slots [begin, end) from `now` into `next` over [t0, t1]. Writes only those
+  // agents' entries of `next` and `arrival`.
+  void advance(std::size_t begin, std::size_t end, double t0, double t1, State& next, std::size_t& failures);
+
+  // Rebuilds the neighbour grid and the obstacle lists for a step over [t0, t1].
+  void rebuild(double t0, double t1);
+  // Counts and the grid cell size from the current state.
+  void refresh();
+  // Target advancement: while the agent at p is within R of its target or has passed it (is ahead of the line
+  // through the target across the path), the target moves on. True when that happens at the last point.
+  [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k) const {
+    const double R2 = options.follow_radius_m * options.follow_radius_m;
+    for (;;) {
+      const Eigen::Vector2d d = p - target(j, k);
+      if (d.squaredNorm() > R2 && d.x() * tangent_x[k] + d.y() * tangent_y[k] <= 0) return false;
+      if (k + 1 == K) return true;
+      ++k;
+    }
+  }
+
+  void step();
+};
+
+Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_in, Options options_in)
+    : course(std::move(course_in)),
+      agents(std::move(agents_in)),
+      scene(std::move(scene_in)),
+      options(options_in),
+      obstacles(scene, options.agent_radius_m, options.obstacle_distance_m, options.slide_around_obstacles) {
+  validate(options);
+  scene.validate("sketch scene");
+  K = course.point_count();
+  A = course.auxiliary_count();
+  N = agents.agent_count();
+  if (K < 2 || A < 1 || course.speed.size() != K || course.standard_distance.size() != K ||
+      course.correction_scale.size() != K) {
+    throw InputError(
+        "sketch: the course is incomplete (expected at least 2 points, one auxiliary line and one "
+        "speed, standard distance and correction per point; build it with analyse_strokes)");
+  }
+  if (static_cast<std::size_t>(agents.weights.rows()) != N ||
+      static_cast<std::size_t>(agents.weights.cols()) != A + 1 || agents.correction_draw.size() != N ||
+      agents.first_target.size() != N) {
+    throw InputError("sketch: agent parameters disagree with " + std::to_string(N) + " agents and " +
+                     std::to_string(A + 1) + " strokes (build them with agent_parameters or place_agents)");
+  }
+  if (N >= std::numeric_limits<std::uint32_t>::max()) throw InputError("sketch: too many agents");
+
+  main_x.resize(K);
+  main_y.resize(K);
+  offset_x.resize(K * A);
+  offset_y.resize(K * A);
+  for (std::size_t k = 0; k < K; ++k) {
+    main_x[k] = course.main[k].x();
+    main_y[k] = course.main[k].y();
+    for (std::size_t i = 0; i < A; ++i) {
+      const Eigen::Vector2d v = course.offset(i, k);
+      offset_x[k * A + i] = v.x();
+      offset_y[k * A + i] = v.y();
+    }
+  }
+  speed = course.speed;
+  tangent_x.resize(K);
+  tangent_y.resize(K);
+  for (std::size_t k = 0; k < K; ++k) {
+    Eigen::Vector2d t = course.main[std::min(k + 1, K - 1)] - course.main[k > 0 ? k - 1 : 0];
+    if (t.squaredNorm() == 0) t = k + 1 < K ? course.main[k + 1] - course.main[k] : course.main[k] - course.main[k - 1];
+    t.normalize();
+    tangent_x[k] = t.x();
+    tangent_y[k] = t.y();
+  }
+  standard = course.standard_distance;
+  correction = course.correction_scale;
+  weight.resize(N * A);
+  for (std::size_t j = 0; j < N; ++j) {
+    for (std::size_t i = 0; i < A; ++i) {
+      weight[j * A + i] = agents.weights(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i + 1));
+    }
+  }
+  draw = agents.correction_draw;
+
+  State& s0 = now();
+  s0.x.resize(N);
+  s0.y.resize(N);
+  s0.k.resize(N);
+  s0.status.assign(N, walking);
+  s0.side.assign(N, 0);
+  arrival.assign(N, std::numeric_limits<double>::quiet_NaN());
+  in_grid.assign(N, 1);
+  for (std::size_t j = 0; j < N; ++j) {
+    s0.x[j] = agents.start[j].x();
+    s0.y[j] = agents.start[j].y();
+    if (agents.first_target[j] >= K) {
+      throw InputError("sketch: agent " + std::to_string(j) + " first target " +
+                       std::to_string(agents.first_target[j]) + " is past the course's " + std::to_string(K) +
+                       " points");
+    }
+    s0.k[j] = static_cast<std::uint32_t>(agents.first_target[j]);
+  }
+
+  // Starting positions: a centre inside an obstacle is an input error; an overlapping body is pushed out.
+  rebuild(0.0, 0.0);
+  for (std::uint32_t j = 0; j < N; ++j) {
+    Eigen::Vector2d p(s0.x[j], s0.y[j]);
+    for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
+      const double d = distance_to(scene.obstacles[o], p, 0.0).signed_distance;
+      if (d < 0) {
+        std::ostringstream m;
+        m << "sketch: agent " << j << " starts at (" << p.x() << ", " << p.y() << ") inside obstacle " << o;
+        if (!scene.obstacles[o].name.empty()) m << " ('" << scene.obstacles[o].name << "')";
+        m << ", " << -d << " m from its boundary; start agents outside obstacles";
+        throw InputError(m.str());
+      }
+    }
+    if (!obstacles.empty() && !obstacles.keep_clear(p, p, 0.0)) ++unresolved;
+    s0.x[j] = p.x();
+    s0.y[j] = p.y();
+    if (reach_targets(j, p, s0.k[j])) {
+      s0.status[j] = arrived;
+      arrival[j] = 0.0;
+    }
+  }
+  states[1] = s0;
+  refresh();
+}
+
+void Simulation::Impl::refresh() {
+  const State& s = now();
+  walking_count = arrived_count = 0;
+  largest_avoidance = 0;
+  for (std::uint32_t j = 0; j < N; ++j) {
+    const std::uint8_t st = s.status[j];
+    in_grid[j] = st != removed;
+    if (st == removed) continue;
+    largest_avoidance = std::max(largest_avoidance, avoidance(j, s.k[j]));
+    if (st == walking) {
+      ++walking_count;
+    } else {
+      ++arrived_count;
+    }
+  }
+}
+
+void Simulation::Impl::rebuild(double t0, double t1) {
+  const State& s = now();
+  // With avoidance off, cells only serve the obstacle lists: any size works, use the follow radius.
+  const double cell = options.avoid_weight > 0 && largest_avoidance > 0 ? largest_avoidance : options.follow_radius_m;
+  grid.build(s.x, s.y, in_grid, cell);
+  obstacles.rebuild(grid, t0, t1);
+}
+
+Eigen::Vector2d Simulation::Impl::agent_repulsion(std::size_t slot, const Eigen::Vector2d& p, double r) const {
+  const std::uint32_t* order = grid.order().data();
+  const double* sx = grid.sorted_x().data();
+  const double* sy = grid.sorted_y().data();
+  const std::size_t nx = grid.columns(), ny = grid.rows();
+  const double px = p.x(), py = p.y(), r2 = r * r;
+  const std::size_t cx = grid.column(px), cy = grid.row(py);
+  const std::size_t c0 = cx > 0 ? cx - 1 : 0, c1 = std::min(cx + 1, nx - 1);
+  const std::size_t r0 = cy > 0 ? cy - 1 : 0, r1 = std::min(cy + 1, ny - 1);
+  double ax = 0, ay = 0;
+  for (std::size_t row = r0; row <= r1; ++row) {
+    // The three cells of a row are consecutive slots.
+    const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
+    for (std::uint32_t l = from; l < to; ++l) {
+      const double dx = px - sx[l], dy = py - sy[l];
+      const double d2 = dx * dx + dy * dy;
+      if (d2 >= r2) continue;
+      if (d2 > 0) {
+        const double c = r / std::sqrt(d2) - 1.0;
+        ax += c * dx;
+        ay += c * dy;
+      } else if (l != slot) {
+        // Same place: (p_j − p_l)(r/d − 1) has length r − d → r, in a direction fixed by the pair.
+        const Eigen::Vector2d u = coincident_direction(order[slot], order[l]);
+        ax += r * u.x();
+        ay += r * u.y();
+      }
+    }
+  }
+  return {ax, ay};
+}
+
+void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, double t1, State& next,
+                               std::size_t& failures) {
+  const State& s = now();
+  const std::uint32_t* order = grid.order().data();
+  const double R = options.follow_radius_m;
+  const double w_traj = options.trajectory_weight, w_avoid = options.avoid_weight, w_block = options.obstacle_weight;
+  const double dt = options.time_step_s;
+  const bool remove_at_end = options.end_of_path == EndOfPath::remove;
+  const bool has_obstacles = !obstacles.empty();
+
+  for (std::size_t slot = begin; slot < end; ++slot) {
+    const std::uint32_t j = order[slot];
+    const Eigen::Vector2d p(s.x[j], s.y[j]);
+    std::uint32_t k = s.k[j];
+    std::uint8_t status = s.status[j];
+    std::int8_t side = 0;
+    Eigen::Vector2d q = p;
+
+    if (status == walking) {
+      // Eq. 14: pull toward the target beyond R.
+      const Eigen::Vector2d to_goal = target(j, k) - p;
+      const double dist = to_goal.norm();
+      Eigen::Vector2d pull = Eigen::Vector2d::Zero();
+      if (dist > R) pull = (w_traj * (1.0 - R / dist)) * to_goal;
+      // Eq. 18–19 generalised, with the pull slid along obstacles it points into.
+      Eigen::Vector2d block = Eigen::Vector2d::Zero();
+      if (has_obstacles && w_block > 0) {
+        const detail::ObstacleResponse r =
+            obstacles.respond(p, t0, pull, Eigen::Vector2d(tangent_x[k], tangent_y[k]), s.side[j], j);
+        pull = r.pull;
+        block = r.push;
+        side = r.side;
+      }
+      // Eq. 16–17 (repulsion sign as read) and Eq. 20.
+      Eigen::Vector2d force = pull + w_block * block;
+      if (w_avoid > 0) force += w_avoid * agent_repulsion(slot, p, avoidance(j, k));
+      // Eq. 21–22: move v_k Δt along F; F = 0 stays.
+      const double f = force.norm();
+      if (f > 0) q = p + (speed[k] * dt / f) * force;
+      if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
+      // Target advancement (after the move, as in the paper; plus "passed", see sketch.h).
+      if (reach_targets(j, q, k)) {
+        status = arrived;
+        arrival[j] = t1;  // agent j's own entry: no other task writes it
+      }
+    } else if (status == arrived) {
+      if (remove_at_end) {
+        status = removed;
+      } else {
+        // Standing agents make room: half their overlap with agents and obstacles, at most v Δt (see sketch.h).
+        Eigen::Vector2d overlap = Eigen::Vector2d::Zero();
+        if (w_avoid > 0) overlap += agent_repulsion(slot, p, avoidance(j, k));
+        if (has_obstacles && w_block > 0) overlap += obstacles.push(p, t0);
+        const double length = 0.5 * overlap.norm();
+        if (length > 0) q = p + (std::min(length, speed[k] * dt) / overlap.norm()) * overlap;
+        if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
+      }
+    }
+    next.x[j] = q.x();
+    next.y[j] = q.y();
+    next.k[j] = k;
+    next.status[j] = status;
+    next.side[j] = side;
+  }
+}
+
+void Simulation::Impl::step() {
+  const double t0 = time_at(steps), t1 = time_at(steps + 1);
+  rebuild(t0, t1);
+  State& next = states[static_cast<std::size_t>(1 - current)];
+  parallel_for(N, grain, [&](std::size_t begin, std::size_t end) {
+    std::size_t failures = 0;
+    advance(begin, end, t0, t1, next, failures);
+    if (failures > 0) unresolved += failures;
+  });
+  current = 1 - current;
+  ++steps;
+  refresh();
+}
+
+// --- Simulation ---
+
+Simulation::Simulation(Course course, AgentParameters agents, Scene scene, Options options)
+    : impl_(std::make_unique<Impl>(std::move(course), std::move(agents), std::move(scene), options)) {}
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
+void Simulation::step() { impl_->step(); }
+std::size_t Simulation::agent_count() const noexcept { return impl_->N; }
+std::size_t Simulation::step_count() const noexcept { return impl_->steps; }
+double Simulation::time() const noexcept { return impl_->time_at(impl_->steps); }
+bool Simulation::finished() const noexcept {
+  return impl_->walking_count == 0 && (impl_->options.end_of_path == EndOfPath::stop || impl_->arrived_count == 0);
+}
+Eigen::Vector2d Simulation::position(std::size_t agent) const {
+  assert(agent < impl_->N);
+  return {impl_->now().x[agent], impl_->now().y[agent]};
+}
+AgentStatus Simulation::status(std::size_t agent) const {
+  assert(agent < impl_->N);
+  return static_cast<AgentStatus>(impl_->now().status[agent]);
+}
+std::size_t Simulation::target_index(std::size_t agent) const {
+  assert(agent < impl_->N);
+  return impl_->now().k[agent];
+}
+double Simulation::arrival_time(std::size_t agent) const {
+  assert(agent < impl_->N);
+  return impl_->arrival[agent];
+}
+double Simulation::path_fraction() const {
+  const Impl& m = *impl_;
+  if (m.N == 0) return 1.0;
+  const State& s = m.now();
+  const double last = static_cast<double>(m.K - 1);
+  double sum = 0;
+  for (std::size_t j = 0; j < m.N; ++j) sum += s.status[j] == walking ? static_cast<double>(s.k[j]) / last : 1.0;
+  return sum / static_cast<double>(m.N);
+}
+std::size_t Simulation::unresolved_obstacle_contacts() const noexcept { return impl_->unresolved.load(); }
+const Course& Simulation::course() const noexcept { return impl_->course; }
+const AgentParameters& Simulation::agents() const noexcept { return impl_->agents; }
+
+void Simulation::sample(double time, std::span<double> frame) const {
+  const Impl& m = *impl_;
+  assert(frame.size() == 3 * m.N);
+  const State& a = m.previous();
+  const State& b = m.now();
+  const double t1 = this->time();
+  const double alpha =
+      m.steps == 0 ? 1.0 : std::clamp((time - (t1 - m.options.time_step_s)) / m.options.time_step_s, 0.0, 1.0);
+  parallel_for(m.N, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      double* out = frame.data() + 3 * j;
+      if (b.status[j] != removed) {
+        out[0] = (1 - alpha) * a.x[j] + alpha * b.x[j];
+        out[1] = (1 - alpha) * a.y[j] + alpha * b.y[j];
+        out[2] = 0.0;
+      } else if (alpha == 0.0 && a.status[j] != removed) {
+        out[0] = a.x[j];
+        out[1] = a.y[j];
+        out[2] = 0.0;
+      } else {
+        out[0] = out[1] = out[2] = std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+  });
+}
+
+}  // namespace throng::sketch
