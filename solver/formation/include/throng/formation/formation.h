@@ -1,0 +1,172 @@
+// Spectral formation control: keyframe formations of a group interpolated through rotating Laplacian eigenbases
+// (Takahashi, Yoshida, Kwon, Lee, Lee & Shin, "Spectral-Based Group Formation Control", Eurographics 2009; read
+// with ../shared/design/METHODS.md §2).
+//
+// The method, per group of n individuals and keyframes k = 0..K−1:
+//   1. Graph of each keyframe (§3.1): Delaunay edges (3-D Delaunay for 3-D formations), weight 1/distance, then
+//      the user's edits. Laplacian L_k (n×n, positive SEMI-definite); the graph must be connected.
+//   2. Eigenbasis E_k of L_k, eigenvalues ascending, e1 = 1/√n set exactly. Coordinates x = Σ α_j e_j (Eq. 1).
+//   3. Each basis is aligned to the previous one (§3.2, §4.2): target vectors reordered (greedy, or the max–min
+//      refinement), signs flipped so <e^S_j, e^T_j> ≥ 0, det(M_{k−1}ᵀ M_k) made +1 by flipping the least aligned
+//      vector. Beyond the paper: within a repeated eigenvalue (regular formations: circles, grids) the target
+//      basis is rotated to match the source (orthogonal Procrustes), the many-dimensional form of the sign rule;
+//      without it LAPACK's arbitrary basis of that eigenspace would spin the individuals needlessly.
+//   4. Rotations between aligned bases, G_ab = M_aᵀ M_b, decomposed exactly as G = Z U Zᵀ, U block diagonal with
+//      2×2 rotations (the real Schur form of an orthogonal matrix; −1 pairs become rotations by π). Powers
+//      G^c = Z U(c) Zᵀ, each block rotated by c·θ. (The paper approximated powers with Denman–Beavers square roots.)
+//   5. Several keyframes (§4.1, Eq. 5): with spline weights c−1..c2 (Catmull-Rom, tension τ, endpoints
+//      duplicated) and a = n−1, M(t) = M_a · G_{a,n+2}^{c2} · G_{a,n+1}^{c1} · G_{a,n}^{c0}: the paper's
+//      (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1} written in M_a's basis. Two keyframes give the §3.2 path
+//      M(t) = R^{s(t)} S with s = c1 + c2 (s(t) = t when τ = 1; the default τ = 0.5 eases in and out a little).
+//   6. Coefficients (§3.3, Eq. 4): each (α_j, β_j) interpolated in polar form, length and angle with the same
+//      spline weights, angles unwrapped the shorter way round between consecutive keyframes; in 3-D (§4.5) the
+//      direction follows the same product of rotation powers (slerp for two keyframes) and the length the spline.
+//      The barycentre (j = 1) follows the spline linearly.
+//   7. Orientation (§3.3, PCA adjustment): each keyframe is rotated about its barycentre so its principal axes
+//      match the previous keyframe's (the sign ambiguity of the axes is settled by the correspondence: the
+//      candidate closest to the previous keyframe wins; nearly isotropic keyframes, whose axes are undefined, use
+//      the least-squares rotation instead). The shapes are interpolated in this common frame and the keyframes'
+//      own rotation is restored by a rotation interpolated with the same spline (2-D: the unwrapped angle; 3-D:
+//      the product of rotation powers), so keyframes are still hit exactly.
+//   8. Positions x(t) = anchor(t) + M(t) C(t) O(t)ᵀ, all frames of a keyframe interval in one matrix product
+//      chain: w = Z1ᵀ C, rotate blocks (O(n) per frame), w = (Z2ᵀ Z1) w, ..., x = (M_a Z_last) w.
+//   9. Hierarchy (§4.4): a tree of groups; each group runs steps 1–8 on its items (its direct members and the
+//      barycentres of its subgroups) relative to its own barycentre, whose path comes from the parent group.
+//      Without a tree, one can be built by spectral clustering (recursive Fiedler bisection of the graph summed
+//      over the keyframes).
+//  10. Collision avoidance (§4.3): social forces (Helbing & Molnár 1995) drive each individual along its spectral
+//      path while individuals repel; then the paths are smoothed (keyframe frames pinned) while a minimum distance
+//      is kept by projection at every frame.
+//  11. Beyond the paper: individual matching between keyframes by minimum-cost assignment when rows are not in
+//      correspondence; keyframes taken from an existing crowd at given frames.
+//
+// Cost: eigen-decompositions O(n³) per keyframe, one symmetric eigenproblem O(n³) per rotation (the rotation's
+// planes are the eigenspaces of its symmetric part; clusters of nearly equal angles are resolved exactly by a
+// small Hermitian eigenproblem), and per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n).
+#pragma once
+
+#include <throng/core/crowd_motion.h>
+#include <throng/core/progress.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace throng::formation {
+
+/// How target eigenvectors are paired with source eigenvectors (§4.2).
+enum class Reordering {
+  none,    ///< by eigenvalue order
+  greedy,  ///< source j = 2..n in turn takes the free target vector with the largest |inner product| (the paper's)
+  max_min  ///< maximise the smallest |inner product| over all pairs (exact bottleneck assignment), then the sum
+};
+
+/// How keyframes are brought to a common orientation before their shapes are interpolated (§3.3).
+enum class OrientationAlignment {
+  none,       ///< coefficients interpolated as they are (rotation handled by the polar interpolation alone)
+  pca,        ///< principal axes matched (the paper's PCA adjustment)
+  procrustes  ///< least-squares rotation onto the previous keyframe (uses the correspondence)
+};
+
+/// Social forces and the minimum-distance smoothing that follow the spectral paths (§4.3).
+struct CollisionOptions {
+  bool enabled = false;
+  double min_distance_m = 0.6;               ///< centre-to-centre minimum between any two individuals, every frame
+  double relaxation_time_s = 0.4;            ///< τ of the driving force (v_desired − v)/τ
+  double tracking_time_s = 0.6;              ///< desired velocity = path velocity + (path point − position)/this
+  double repulsion_strength_m_per_s2 = 4.0;  ///< A in A·exp((min_distance − d)/B)
+  double repulsion_range_m = 0.25;           ///< B, the range of the repulsion
+  double time_step_s = 0.02;                 ///< largest simulation step; frames are sub-stepped to it
+  double smoothing_time_s = 0.25;            ///< extent of the temporal smoothing (about the cut-off period)
+  int smoothing_passes = 3;                  ///< smoothing/projection alternations after the simulation
+  int projection_sweeps = 200;               ///< Gauss–Seidel sweeps per frame to restore the minimum distance
+};
+
+struct Options {
+  double frame_rate_hz = 30.0;   ///< output frames per second; a keyframe interval Δt gets max(1, round(Δt·rate))
+                                 ///< equal frames, so every keyframe time is a frame
+  double tension = 0.5;          ///< Catmull-Rom τ of Eq. 5, in [0, 1]
+  Reordering reordering = Reordering::greedy;
+  OrientationAlignment orientation = OrientationAlignment::pca;
+  double isotropy_tolerance = 0.05;  ///< PCA is used only when principal variances differ by more than this
+                                     ///< fraction of their sum; otherwise the least-squares rotation
+  bool match_individuals = false;    ///< rows of keyframes k ≥ 1 are not in correspondence with keyframe 0:
+                                     ///< match them (minimum summed squared distance after alignment)
+  int auto_group_size = 0;           ///< > 0 and no hierarchy given: build one by spectral clustering with at
+                                     ///< most this many items per group (≥ 2); 0 = flat
+  double radius_m = 0.25;            ///< radius written for every individual
+  CollisionOptions collision;
+};
+
+/// A pair of individuals (indices into the keyframes' rows, i.e. output agents).
+using Pair = std::array<int, 2>;
+
+/// Multiply the weights of existing edges: the listed pairs, and every edge between two listed members.
+struct EdgeScale {
+  std::vector<Pair> pairs;   ///< each must be an edge of the graph (after add/remove)
+  std::vector<int> members;  ///< every existing edge with both ends among these
+  double factor = 1.0;       ///< > 0
+};
+
+/// Edits of a keyframe graph (§3.1), applied in this order: remove, add, scale.
+struct AdjacencyEdits {
+  std::vector<Pair> remove;        ///< each must be an edge
+  std::vector<Pair> add;           ///< connected with weight 1/distance (a pair already adjacent is left as is)
+  std::vector<EdgeScale> scale;
+};
+
+struct Keyframe {
+  double time_s = 0.0;
+  Eigen::MatrixXd positions;  ///< #individuals by 2 or 3 (metres); row i is individual i
+  AdjacencyEdits edits;       ///< this keyframe only, after the problem-wide edits
+};
+
+/// A group of the hierarchy (§4.4). The root holds everyone; each individual is in exactly one group.
+struct Group {
+  std::string name;
+  std::vector<int> members;      ///< individuals directly in this group
+  std::vector<Group> subgroups;  ///< nested groups (their barycentres are this group's other items)
+};
+
+struct Problem {
+  std::vector<Keyframe> keyframes;  ///< ≥ 2, strictly increasing times, the same count and dimension
+  std::vector<std::int64_t> ids;    ///< #individuals, distinct; empty: 0..n−1
+  AdjacencyEdits edits;             ///< applied to every keyframe's graph
+  std::optional<Group> hierarchy;   ///< none: flat, or built automatically (Options::auto_group_size)
+};
+
+/// What the collision stage achieved.
+struct CollisionReport {
+  bool ran = false;
+  bool satisfied = true;           ///< every pair at least min_distance apart at every frame (to 1e-6 relative)
+  double closest_m = 0.0;          ///< smallest centre distance found over all frames and pairs
+  std::size_t closest_frame = 0;   ///< where it was found
+  Pair closest_pair{0, 0};
+  double largest_shift_m = 0.0;    ///< largest distance of a final position from its spectral position
+};
+
+struct Result {
+  CrowdMotion motion;  ///< #frames by #individuals; species = index of the individual's innermost group
+  std::vector<std::vector<int>> correspondence;  ///< per keyframe: row of that keyframe taken by individual i
+  Group hierarchy;     ///< the tree used (given, built, or a single root group)
+  CollisionReport collision;
+};
+
+/// Interpolates the keyframes of `problem`. Throws ConfigError for options out of range, InputError for bad data
+/// (fewer than 2 keyframes, counts or dimensions that differ, times not increasing, NaN, duplicate positions in a
+/// keyframe, a disconnected graph, edits naming non-edges or unknown individuals, a malformed hierarchy,
+/// keyframes closer than the collision distance). Deterministic: the same input gives the same bits whatever
+/// the thread count. Progress stages: "formation analysis", "formation frames", "formation collisions".
+[[nodiscard]] Result animate_formation(const Problem& problem, const Options& options, Progress& progress);
+[[nodiscard]] Result animate_formation(const Problem& problem, const Options& options);
+
+/// Keyframes from an existing crowd at the given frames (times taken from the crowd). Every agent must be
+/// present at those frames (InputError otherwise, naming the agent and frame). `dimension` 2 drops z.
+[[nodiscard]] std::vector<Keyframe> keyframes_from_motion(const CrowdMotion& motion,
+                                                          const std::vector<std::size_t>& frames, int dimension = 2);
+
+}  // namespace throng::formation

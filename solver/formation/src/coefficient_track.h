@@ -1,0 +1,47 @@
+// The geometric interpolation (§3.3 Eq. 4, §4.1, §4.5): each item's coefficient vector (α_j, β_j[, γ_j]) across
+// the keyframes, in polar form.
+#pragma once
+
+#include "spline.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace throng::formation {
+
+/// Coefficient rows of every keyframe (K matrices #items by d, d = 2 or 3, in the keyframes' aligned bases).
+/// Row 0 (the barycentre direction e1) is interpolated linearly with the spline weights. Rows j ≥ 1:
+///   2-D: length r and angle θ, each a spline of the keyframes' values; angles are unwrapped so that consecutive
+///        keyframes differ by at most π (the shorter way round, Eq. 4);
+///   3-D: length a spline; direction u(t) = Rot(u_a→u_{n+2})^{c2} Rot(u_a→u_{n+1})^{c1} Rot(u_a→u_n)^{c0} u_a with
+///        Rot(u→v) the shortest rotation — slerp for two keyframes, Eq. 5's product of rotation powers for more.
+/// A zero coefficient has no direction: it takes its neighbour keyframe's (so the point moves straight through
+/// the origin of that coefficient instead of turning).
+class CoefficientTrack {
+ public:
+  CoefficientTrack() = default;
+  explicit CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys);
+
+  /// Per-interval data (the 3-D rotations between the control keyframes); cheap in 2-D.
+  struct Interval {
+    ControlKeys keys;
+    Eigen::MatrixXd axes;    ///< 3-D: #items by 9, unit axes of Rot(a→n), Rot(a→n+1), Rot(a→n+2)
+    Eigen::MatrixXd angles;  ///< 3-D: #items by 3, their angles
+  };
+  [[nodiscard]] Interval interval(const ControlKeys& keys) const;
+
+  /// Coefficients (#items by d) at spline weights `w` of an interval.
+  void evaluate(const Interval& interval, const SplineWeights& w, Eigen::Ref<Eigen::MatrixXd> out) const;
+
+  [[nodiscard]] int dimension() const noexcept { return dimension_; }
+
+ private:
+  int dimension_ = 2;
+  std::vector<Eigen::MatrixXd> keys_;  // as given (row 0 is used)
+  Eigen::MatrixXd length_;             // #items by K
+  Eigen::MatrixXd angle_;              // 2-D: #items by K, unwrapped
+  std::vector<Eigen::MatrixXd> direction_;  // 3-D: K of #items by 3, unit
+};
+
+}  // namespace throng::formation

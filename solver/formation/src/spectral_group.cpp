@@ -1,0 +1,157 @@
+#include "spectral_group.h"
+
+#include "dense.h"
+#include "eigenbasis.h"
+
+#include <algorithm>
+#include <cassert>
+#include <optional>
+
+namespace throng::formation {
+namespace {
+
+// Frames evaluated per matrix product: bounds the working memory (3 · #items · d · chunk doubles).
+constexpr std::size_t frames_per_chunk = 256;
+
+Eigen::VectorXd mean_row(const Eigen::MatrixXd& points) { return points.colwise().mean().transpose(); }
+
+}  // namespace
+
+SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& options)
+    : items_(static_cast<int>(keyframes.positions.front().rows())),
+      dimension_(static_cast<int>(keyframes.positions.front().cols())),
+      tension_(options.tension) {
+  const std::size_t k_count = keyframes.positions.size();
+  assert(k_count >= 2 && keyframes.anchors.size() == k_count && keyframes.edits.size() == k_count);
+
+  // Graphs and eigenbases, keyframes in parallel (§3.1).
+  graphs_.resize(k_count);
+  std::vector<Eigenbasis> eigenbases(k_count);
+  dense::for_each(k_count, [&](std::size_t k) {
+    const std::string what = keyframes.what + " keyframe " + std::to_string(k);
+    Adjacency graph = delaunay_adjacency(keyframes.positions[k], what, keyframes.item_names);
+    apply_edits(graph, keyframes.positions[k], keyframes.edits[k], what, keyframes.item_names);
+    require_connected(graph, what, keyframes.item_names);
+    eigenbases[k] = laplacian_eigenbasis(laplacian(graph));
+    graphs_[k] = std::move(graph);
+  });
+
+  // Each basis aligned to the previous one (§3.2, §4.2).
+  bases_.resize(k_count);
+  bases_[0] = std::move(eigenbases[0].vectors);
+  for (std::size_t k = 1; k < k_count; ++k) bases_[k] = align_basis(bases_[k - 1], std::move(eigenbases[k]), options.reordering);
+
+  // Orientation (PCA adjustment) and the coefficients of each keyframe in the common frame (Eq. 1).
+  std::vector<Eigen::MatrixXd> centred(k_count);
+  for (std::size_t k = 0; k < k_count; ++k)
+    centred[k] = keyframes.positions[k].rowwise() - mean_row(keyframes.positions[k]).transpose();
+  std::vector<Eigen::MatrixXd> rotations = keyframe_orientations(centred, options.orientation, options.isotropy_tolerance);
+  std::vector<Eigen::MatrixXd> coefficients(k_count);
+  for (std::size_t k = 0; k < k_count; ++k) {
+    const Eigen::MatrixXd relative = keyframes.positions[k].rowwise() - keyframes.anchors[k].transpose();
+    coefficients[k] = dense::multiply(bases_[k], true, relative * rotations[k]);
+  }
+  coefficients_ = CoefficientTrack(coefficients);
+  orientation_ = OrientationTrack(std::move(rotations));
+
+  // The rotations G_ab = M_aᵀ M_b that the intervals' Eq. 5 products use, decomposed in parallel.
+  std::vector<std::pair<int, int>> pairs;
+  for (int s = 0; s + 1 < static_cast<int>(k_count); ++s) {
+    const ControlKeys keys = control_keys(s, static_cast<int>(k_count));
+    for (int i = 1; i < 4; ++i) {
+      const std::pair<int, int> pair{keys.keys[0], keys.keys[static_cast<std::size_t>(i)]};
+      if (pair.first != pair.second && std::find(pairs.begin(), pairs.end(), pair) == pairs.end()) pairs.push_back(pair);
+    }
+  }
+  std::vector<std::optional<RotationPower>> decomposed(pairs.size());
+  dense::for_each(pairs.size(), [&](std::size_t i) {
+    const Eigen::MatrixXd g = dense::multiply(bases_[static_cast<std::size_t>(pairs[i].first)], true,
+                                              bases_[static_cast<std::size_t>(pairs[i].second)]);
+    decomposed[i].emplace(g);
+  });
+  for (std::size_t i = 0; i < pairs.size(); ++i) rotations_.emplace(pairs[i], std::move(*decomposed[i]));
+}
+
+SpectralGroup::IntervalPlan SpectralGroup::plan_interval(int segment) const {
+  IntervalPlan plan;
+  plan.keys = control_keys(segment, keyframe_count());
+  const int a = plan.keys.keys[0];
+  for (int i = 1; i < 4; ++i) {
+    const int b = plan.keys.keys[static_cast<std::size_t>(i)];
+    if (b == a) continue;  // the identity: a duplicated endpoint
+    const RotationPower& rotation = rotations_.at({a, b});
+    if (rotation.is_identity()) continue;
+    if (!plan.factors.empty() && plan.factors.back().rotation == &rotation) {
+      plan.factors.back().weights.push_back(i);  // same rotation: exponents add
+    } else {
+      plan.factors.push_back(Factor{&rotation, {i}});
+    }
+  }
+  for (std::size_t i = 1; i < plan.factors.size(); ++i)
+    plan.links.push_back(dense::multiply(plan.factors[i].rotation->basis(), true, plan.factors[i - 1].rotation->basis()));
+  const Eigen::MatrixXd& base = bases_[static_cast<std::size_t>(a)];
+  plan.final = plan.factors.empty() ? base : dense::multiply(base, false, plan.factors.back().rotation->basis());
+  plan.coefficients = coefficients_.interval(plan.keys);
+  return plan;
+}
+
+Eigen::MatrixXd SpectralGroup::apply_chain(const IntervalPlan& plan, const Eigen::MatrixXd& c,
+                                           const std::vector<SplineWeights>& weights, int group) const {
+  if (plan.factors.empty()) return dense::multiply(plan.final, false, c);
+  auto exponents = [&](const Factor& factor) {
+    std::vector<double> out(weights.size(), 0.0);
+    for (std::size_t f = 0; f < weights.size(); ++f)
+      for (int i : factor.weights) out[f] += weights[f].c[static_cast<std::size_t>(i)];
+    return out;
+  };
+  Eigen::MatrixXd w = dense::multiply(plan.factors.front().rotation->basis(), true, c);
+  plan.factors.front().rotation->rotate(w, exponents(plan.factors.front()), group);
+  for (std::size_t i = 1; i < plan.factors.size(); ++i) {
+    w = dense::multiply(plan.links[i - 1], false, w);
+    plan.factors[i].rotation->rotate(w, exponents(plan.factors[i]), group);
+  }
+  return dense::multiply(plan.final, false, w);
+}
+
+Eigen::MatrixXd SpectralGroup::evaluate(const Timeline& timeline, const Eigen::MatrixXd& anchor_path) const {
+  const std::size_t frames = timeline.frame_count();
+  const int d = dimension_;
+  assert(anchor_path.rows() == d && static_cast<std::size_t>(anchor_path.cols()) == frames);
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(items_) * d, static_cast<Eigen::Index>(frames));
+  std::size_t first = 0;
+  while (first < frames) {
+    const int segment = timeline.segment[first];
+    std::size_t end = first;
+    while (end < frames && timeline.segment[end] == segment) ++end;
+    const IntervalPlan plan = plan_interval(segment);
+    for (std::size_t chunk = first; chunk < end; chunk += frames_per_chunk) {
+      const std::size_t count = std::min(frames_per_chunk, end - chunk);
+      std::vector<SplineWeights> weights(count);
+      Eigen::MatrixXd c(items_, static_cast<Eigen::Index>(count) * d);
+      dense::for_each(count, [&](std::size_t f) {
+        weights[f] = catmull_rom_weights(timeline.local[chunk + f], tension_);
+        Eigen::MatrixXd local(items_, d);
+        coefficients_.evaluate(plan.coefficients, weights[f], local);
+        const Eigen::MatrixXd rotation = orientation_.evaluate(plan.keys, weights[f]);
+        c.middleCols(static_cast<Eigen::Index>(f) * d, d) = local * rotation.transpose();
+      });
+      const Eigen::MatrixXd x = apply_chain(plan, c, weights, d);
+      for (std::size_t f = 0; f < count; ++f) {
+        const auto column = static_cast<Eigen::Index>(chunk + f);
+        for (int j = 0; j < items_; ++j)
+          for (int axis = 0; axis < d; ++axis)
+            out(static_cast<Eigen::Index>(j) * d + axis, column) =
+                x(j, static_cast<Eigen::Index>(f) * d + axis) + anchor_path(axis, column);
+      }
+    }
+    first = end;
+  }
+  return out;
+}
+
+Eigen::MatrixXd SpectralGroup::eigenbasis_at(int segment, double t) const {
+  const IntervalPlan plan = plan_interval(segment);
+  return apply_chain(plan, Eigen::MatrixXd::Identity(items_, items_), {catmull_rom_weights(t, tension_)}, items_);
+}
+
+}  // namespace throng::formation
