@@ -60,7 +60,27 @@ Context::Context(int argc, char** argv) {
 
 Context::~Context() = default;
 
+struct Context::ProgressScope::View final : Progress {
+  View(Progress& parent_, double first_, double span_, std::string label_)
+      : parent(parent_), first(first_), span(span_), label(std::move(label_)) {}
+  void update(double fraction, std::string_view stage) override {
+    parent.update(first + span * std::clamp(fraction, 0.0, 1.0), label + ": " + std::string(stage));
+  }
+  Progress& parent;
+  double first, span;
+  std::string label;
+};
+
+Context::ProgressScope::ProgressScope(Context& context, double first, double span, std::string label)
+    : context_(context), previous_(context.scoped_progress_) {
+  view_ = std::make_unique<View>(context.progress(), first, span, std::move(label));
+  context_.scoped_progress_ = view_.get();
+}
+
+Context::ProgressScope::~ProgressScope() { context_.scoped_progress_ = previous_; }
+
 Progress& Context::progress() {
+  if (scoped_progress_) return *scoped_progress_;
   if (!progress_) {
     if (global.quiet) progress_ = std::make_unique<NoProgress>();
     else progress_ = std::make_unique<ProgressReporter>(::isatty(STDERR_FILENO) != 0);

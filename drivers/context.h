@@ -46,7 +46,22 @@ class Context {
   /// The full command line, shell-quoted, for provenance.
   [[nodiscard]] const std::string& command_line() const noexcept { return command_line_; }
   /// Where solvers report progress (a bar on a terminal, PROGRESS lines on a pipe, nothing with --quiet).
+  /// Inside a pipeline step, a view that maps the step's fraction into the whole run's.
   [[nodiscard]] Progress& progress();
+  /// While alive, progress() reports into [first, first + span) of the whole run, stages prefixed by `label`.
+  class ProgressScope {
+   public:
+    ProgressScope(Context& context, double first, double span, std::string label);
+    ~ProgressScope();
+    ProgressScope(const ProgressScope&) = delete;
+    ProgressScope& operator=(const ProgressScope&) = delete;
+
+   private:
+    struct View;
+    Context& context_;
+    std::unique_ptr<View> view_;
+    Progress* previous_;
+  };
   /// Applies --threads for the rest of the run (call once, before solving).
   void limit_threads();
 
@@ -71,6 +86,7 @@ class Context {
   mutable std::shared_ptr<spdlog::logger> logger_;
   std::string command_line_;
   std::unique_ptr<Progress> progress_;
+  Progress* scoped_progress_ = nullptr;
   std::unique_ptr<ThreadLimit> threads_;
 };
 

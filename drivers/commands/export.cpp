@@ -37,6 +37,19 @@ class ExportCommand final : public Command {
     context.print(r);
   }
 
+  std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs, Context& context) override {
+    const std::filesystem::path output = step.at("output").as_string();
+    std::string format = "csv";
+    OptionReader reader(step);
+    reader.choice("format", format, {"csv"});
+    step.finish();
+    if (inputs.size() != 1) step.fail("export takes one crowd, found " + std::to_string(inputs.size()));
+    write_csv(output, inputs.front()->motion);
+    context.info("wrote " + output.string());
+    return std::nullopt;
+  }
+  bool makes_crowd() const override { return false; }
+
  private:
   std::filesystem::path input_;
   std::filesystem::path output_;

@@ -13,6 +13,21 @@
 namespace throng::cli {
 namespace {
 
+void bind(OptionBinder& b, RealDatasetOptions& o) {
+  b.field("fps", o.video_fps, Range::non_negative());
+  b.field("radius", o.agent_radius, Range::non_negative());
+  b.field("wall_thickness", o.wall_thickness, Range::non_negative());
+}
+
+/// Reads a dataset folder, obsmat.txt or CSV table.
+CrowdFile import_any(const std::filesystem::path& input, const RealDatasetOptions& options) {
+  if (input.extension() != ".csv") return import_real_dataset(input, options);
+  CrowdFile file;
+  file.motion = read_csv(input, options.agent_radius);
+  file.provenance.inputs.push_back(input.string());
+  return file;
+}
+
 class ImportCommand final : public Command {
  public:
   std::string name() const override { return "import"; }
@@ -33,19 +48,12 @@ class ImportCommand final : public Command {
   void run(Context& context) override {
     YAML::Node effective;
     effective["dataset"] = input_.string();
-    effective["fps"] = yaml_number(options_.video_fps);
-    effective["radius"] = yaml_number(options_.agent_radius);
-    effective["wall_thickness"] = yaml_number(options_.wall_thickness);
+    OptionWriter writer(effective);
+    bind(writer, options_);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
 
-    CrowdFile file;
-    if (input_.extension() == ".csv") {
-      file.motion = read_csv(input_, options_.agent_radius);
-      file.provenance.inputs.push_back(input_.string());
-    } else {
-      file = import_real_dataset(input_, options_);
-    }
+    CrowdFile file = import_any(input_, options_);
     const Provenance source = file.provenance;
     file.provenance = context.provenance(effective, {input_.string()}, {&source});
     write_crowd_file(output_, file);
@@ -62,6 +70,15 @@ class ImportCommand final : public Command {
     r["obstacles"] = file.scene.obstacles.size();
     if (!file.provenance.credits.empty()) r["credit"] = file.provenance.credits;
     context.print(r);
+  }
+
+  std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>&, Context&) override {
+    const std::filesystem::path dataset = step.at("dataset").as_string();
+    RealDatasetOptions options;
+    OptionReader reader(step);
+    bind(reader, options);
+    step.finish();
+    return StepResult{import_any(dataset, options), {}};
   }
 
  private:

@@ -19,9 +19,22 @@ class InfoCommand final : public Command {
 
   void run(Context& context) override {
     const CrowdFile file = read_crowd_file(input_);
+    context.print(describe(file, input_.string()));
+  }
+
+  std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs, Context& context) override {
+    step.finish();
+    if (inputs.size() != 1) step.fail("info takes one crowd, found " + std::to_string(inputs.size()));
+    context.print(describe(*inputs.front(), "(pipeline)"));
+    return std::nullopt;
+  }
+  bool makes_crowd() const override { return false; }
+
+ private:
+  static Report describe(const CrowdFile& file, const std::string& name) {
     const CrowdMotion& m = file.motion;
     Report r;
-    r["file"] = input_.string();
+    r["file"] = name;
     r["agents"] = m.agent_count();
     r["frames"] = m.frame_count();
     if (m.frame_count() > 0) {
@@ -75,10 +88,9 @@ class InfoCommand final : public Command {
     prov["inputs"] = p.inputs;
     if (!p.credits.empty()) prov["credits"] = p.credits;
     r["provenance"] = prov;
-    context.print(r);
+    return r;
   }
 
- private:
   std::filesystem::path input_;
 };
 

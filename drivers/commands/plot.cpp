@@ -3,10 +3,33 @@
 #include "factories.h"
 
 #include <throng/io/atomic_output.h>
+#include <throng/io/config.h>
 #include <throng/io/plot.h>
 
 namespace throng::cli {
 namespace {
+
+void bind(OptionBinder& b, PlotOptions& o) {
+  std::vector<double> frames(o.frames.begin(), o.frames.end());
+  b.field("frames", frames);
+  o.frames.assign(frames.begin(), frames.end());
+  b.field("width", o.width_px, Range::closed(200, 20000));
+  b.field("title", o.title);
+  b.field("trajectories", o.trajectories);
+  b.field("obstacles", o.obstacles);
+}
+
+/// Draws `main` over `underneath` (each in grey, dashed): the before/after picture of an edit.
+void plot(const std::filesystem::path& output, const std::vector<std::pair<const CrowdFile*, std::string>>& underneath,
+          const CrowdFile& main, const std::string& main_label, PlotOptions options) {
+  std::vector<PlotLayer> layers;
+  for (const auto& [file, label] : underneath) {
+    layers.push_back({.file = file, .label = "before: " + label, .colour = "#9a9a9a", .opacity = 0.8, .dashed = true});
+  }
+  layers.push_back({.file = &main, .label = underneath.empty() ? main_label : "after: " + main_label});
+  if (options.title.empty()) options.title = main_label;
+  write_plot(output, layers, options);
+}
 
 class PlotCommand final : public Command {
  public:
@@ -29,27 +52,39 @@ class PlotCommand final : public Command {
     YAML::Node effective;
     effective["crowd"] = input_.string();
     if (!overlay_.empty()) effective["overlay"] = overlay_.string();
-    for (long f : options_.frames) effective["frames"].push_back(f);
-    effective["width"] = yaml_number(options_.width_px);
-    effective["trajectories"] = options_.trajectories;
-    effective["obstacles"] = options_.obstacles;
+    OptionWriter writer(effective);
+    bind(writer, options_);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
 
     const CrowdFile file = read_crowd_file(input_);
     CrowdFile before;
-    std::vector<PlotLayer> layers;
+    std::vector<std::pair<const CrowdFile*, std::string>> underneath;
     if (!overlay_.empty()) {
       before = read_crowd_file(overlay_);
-      layers.push_back({.file = &before, .label = "before: " + overlay_.filename().string(), .colour = "#9a9a9a", .opacity = 0.8, .dashed = true});
+      underneath.emplace_back(&before, overlay_.filename().string());
     }
-    layers.push_back({.file = &file, .label = overlay_.empty() ? input_.filename().string() : "after: " + input_.filename().string()});
-    if (options_.title.empty()) options_.title = input_.filename().string();
-    write_plot(output_, layers, options_);
+    plot(output_, underneath, file, input_.filename().string(), options_);
     Report r;
     r["output"] = output_.string();
     context.print(r);
   }
+
+  /// As a step: the last input is drawn over the others (before/after); `output` is the picture.
+  std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs, Context& context) override {
+    const std::filesystem::path output = step.at("output").as_string();
+    PlotOptions options;
+    OptionReader reader(step);
+    bind(reader, options);
+    step.finish();
+    if (inputs.empty()) step.fail("plot needs a crowd: no earlier step made one and no input is named");
+    std::vector<std::pair<const CrowdFile*, std::string>> underneath;
+    for (std::size_t i = 0; i + 1 < inputs.size(); ++i) underneath.emplace_back(inputs[i], "input " + std::to_string(i + 1));
+    plot(output, underneath, *inputs.back(), output.stem().string(), options);
+    context.info("wrote " + output.string());
+    return std::nullopt;
+  }
+  bool makes_crowd() const override { return false; }
 
  private:
   std::filesystem::path input_;

@@ -10,6 +10,10 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_export_command());
   c.push_back(make_info_command());
   c.push_back(make_plot_command());
+
+  std::vector<Command*> steps;
+  for (const auto& command : c) steps.push_back(command.get());
+  c.push_back(make_run_command(std::move(steps)));
   return c;
 }
 

@@ -1,0 +1,79 @@
+// throng run: a pipeline of steps passing crowds in memory, writing files only where asked.
+#include "test_paths.h"
+
+#include <throng/io/crowd_file.h>
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace throng;
+using Catch::Matchers::Contains;
+
+namespace {
+int run(const std::string& args, std::string* out = nullptr) {
+  return test::run_command(test::throng_program().string() + " " + args, out);
+}
+}  // namespace
+
+TEST_CASE("a pipeline imports, describes, plots and exports, writing only the files it names") {
+  const auto data = test::real_data_dir();
+  if (data.empty()) {
+    WARN("../shared/data/real not found: pipeline test skipped");
+    return;
+  }
+  const auto dir = test::scratch_dir("cli_run");
+  std::ofstream(dir / "job.yaml") << "steps:\n"
+                                     "  - step: import\n"
+                                     "    dataset: " << (data / "zara01").string() << "\n"
+                                     "    name: zara\n"
+                                     "  - step: info\n"
+                                     "  - step: plot\n"
+                                     "    output: " << (dir / "zara.svg").string() << "\n"
+                                     "  - step: export\n"
+                                     "    input: zara\n"
+                                     "    output: " << (dir / "zara.csv").string() << "\n";
+  std::string out;
+  REQUIRE(run("--quiet --json run " + (dir / "job.yaml").string(), &out) == 0);
+  CHECK_THAT(out, Contains("\"agents\": 148"));
+  CHECK(std::filesystem::exists(dir / "zara.svg"));
+  CHECK(std::filesystem::exists(dir / "zara.csv"));
+  // No crowd file was asked for, so none was written.
+  for (const auto& e : std::filesystem::directory_iterator(dir)) CHECK(e.path().extension() != ".h5");
+}
+
+TEST_CASE("a step's output crowd file records the pipeline and the data's credits") {
+  const auto data = test::real_data_dir();
+  if (data.empty()) {
+    WARN("../shared/data/real not found: pipeline test skipped");
+    return;
+  }
+  const auto dir = test::scratch_dir("cli_run_output");
+  std::ofstream(dir / "job.yaml") << "steps:\n  - step: import\n    dataset: " << (data / "hotel").string()
+                                  << "\n    radius: 0.3\n    output: " << (dir / "hotel.h5").string() << "\n";
+  REQUIRE(run("--quiet run " + (dir / "job.yaml").string()) == 0);
+  const CrowdFile f = read_crowd_file(dir / "hotel.h5");
+  CHECK(f.motion.radii.front() == 0.3);
+  CHECK_THAT(f.provenance.options, Contains("step: import"));
+  REQUIRE(f.provenance.credits.size() == 1);
+  CHECK_THAT(f.provenance.credits.front(), Contains("Pellegrini"));
+}
+
+TEST_CASE("unknown steps, unknown keys and missing inputs are config errors with exit 2") {
+  const auto dir = test::scratch_dir("cli_run_errors");
+  std::string out;
+  std::ofstream(dir / "a.yaml") << "steps:\n  - step: frobnicate\n";
+  CHECK(run("run " + (dir / "a.yaml").string(), &out) == 2);
+  CHECK_THAT(out, Contains("a.yaml:2:11") && Contains("unknown step 'frobnicate'"));
+  std::ofstream(dir / "b.yaml") << "steps:\n  - step: import\n    dataset: x\n    radius: 0.3\n    radios: 1\n";
+  CHECK(run("run " + (dir / "b.yaml").string(), &out) == 2);
+  CHECK_THAT(out, Contains("unknown key 'radios'"));
+  std::ofstream(dir / "c.yaml") << "steps:\n  - step: plot\n    output: " << (dir / "p.svg").string() << "\n";
+  CHECK(run("run " + (dir / "c.yaml").string(), &out) == 2);
+  CHECK_THAT(out, Contains("plot needs a crowd"));
+  std::ofstream(dir / "d.yaml") << "steps:\n  - step: info\n    input: nowhere.h5\n";
+  CHECK(run("run " + (dir / "d.yaml").string(), &out) == 2);
+  std::ofstream(dir / "e.yaml") << "steps: []\n";
+  CHECK(run("run " + (dir / "e.yaml").string(), &out) == 2);
+  CHECK_FALSE(std::filesystem::exists(dir / "p.svg"));
+}
