@@ -1,27 +1,25 @@
 #include "neighbour_grid.h"
 
+#include <throng/core/parallel.h>
+
 #include <cassert>
 #include <limits>
 
 namespace throng::sketch::detail {
 
 void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double>& y,
-                          const std::vector<std::uint8_t>& in_grid, double min_cell) {
+                          const std::vector<std::uint8_t>& in_grid, std::size_t count,
+                          const Eigen::AlignedBox2d& bounds, double min_cell) {
   const std::size_t n = x.size();
-  assert(y.size() == n && in_grid.size() == n && n < std::numeric_limits<std::uint32_t>::max());
-  double x_min = std::numeric_limits<double>::infinity(), y_min = x_min;
-  double x_max = -x_min, y_max = -x_min;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!in_grid[i]) continue;
-    x_min = std::min(x_min, x[i]);
-    x_max = std::max(x_max, x[i]);
-    y_min = std::min(y_min, y[i]);
-    y_max = std::max(y_max, y[i]);
-    ++count;
-  }
+  assert(y.size() == n && in_grid.size() == n && count <= n && n < std::numeric_limits<std::uint32_t>::max());
   in_grid_ = count;
-  if (count == 0) x_min = x_max = y_min = y_max = 0;
+  double x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  if (count > 0) {
+    x_min = bounds.min().x();
+    y_min = bounds.min().y();
+    x_max = bounds.max().x();
+    y_max = bounds.max().y();
+  }
 
   // Cell side: at least min_cell, larger when the cell count would exceed ~2 per agent.
   const double cap = std::max(64.0, 2.0 * static_cast<double>(count));
@@ -42,11 +40,11 @@ void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double
   const std::size_t cells = nx_ * ny_;
   start_.assign(cells + 1, 0);
   cell_of_.resize(n);
+  parallel_for(n, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) cell_of_[i] = static_cast<std::uint32_t>(cell(x[i], y[i]));
+  });
   for (std::size_t i = 0; i < n; ++i) {
-    if (!in_grid[i]) continue;
-    const auto c = static_cast<std::uint32_t>(cell(x[i], y[i]));
-    cell_of_[i] = c;
-    ++start_[c + 1];
+    if (in_grid[i]) ++start_[cell_of_[i] + 1];
   }
   for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   order_.resize(n);

@@ -1,6 +1,7 @@
 // Uniform grid over agent positions, rebuilt each step by a counting sort (cache-friendly neighbour search).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -18,9 +19,10 @@ namespace throng::sketch::detail {
 /// far apart), so memory and the prefix sum stay O(agents).
 class NeighbourGrid {
  public:
-  /// x, y: #agents positions; in_grid: #agents flags (0: left out, e.g. removed agents).
+  /// x, y: #agents positions; in_grid: #agents flags (0: left out, e.g. removed agents); count: the number of
+  /// flags set; bounds: the box holding the agents in the grid (the caller gathers both while writing the state).
   void build(const std::vector<double>& x, const std::vector<double>& y, const std::vector<std::uint8_t>& in_grid,
-             double min_cell);
+             std::size_t count, const Eigen::AlignedBox2d& bounds, double min_cell);
 
   [[nodiscard]] std::size_t in_grid_count() const noexcept { return in_grid_; }
   [[nodiscard]] const std::vector<std::uint32_t>& order() const noexcept { return order_; }

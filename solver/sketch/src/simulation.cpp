@@ -12,7 +12,9 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <sstream>
 
@@ -36,6 +38,27 @@ struct State {
   std::vector<std::uint32_t> k;
   std::vector<std::uint8_t> status;
   std::vector<std::int8_t> side;
+};
+
+// What the next step needs to know about a state as a whole, gathered while the state is written (per task,
+// merged under a lock: minima, maxima and counts are exact in any order, so the result is thread-independent).
+struct Summary {
+  std::size_t walking = 0, standing = 0;
+  double largest_avoidance = 0;  // max r over agents in the grid: the grid's cell size
+  Eigen::AlignedBox2d bounds;    // of the agents in the grid
+
+  void add(std::uint8_t status, double x, double y, double r) {
+    if (status == removed) return;
+    (status == walking ? walking : standing) += 1;
+    largest_avoidance = std::max(largest_avoidance, r);
+    bounds.extend(Eigen::Vector2d(x, y));
+  }
+  void merge(const Summary& o) {
+    walking += o.walking;
+    standing += o.standing;
+    largest_avoidance = std::max(largest_avoidance, o.largest_avoidance);
+    bounds.extend(o.bounds);
+  }
 };
 
 // A unit direction for two agents at the same place: fixed by the pair, opposite for the two of them.
@@ -66,13 +89,13 @@ struct Simulation::Impl {
   std::array<State, 2> states;
   int current = 0;
   std::vector<double> arrival;        // N, seconds or NaN
-  std::vector<std::uint8_t> in_grid;  // N
+  std::vector<std::uint8_t> in_grid;  // N, status != removed
   detail::NeighbourGrid grid;
   detail::ObstacleField obstacles;
   std::size_t steps = 0;
   std::atomic<std::size_t> unresolved{0};
-  std::size_t walking_count = 0, arrived_count = 0;
-  double largest_avoidance = 0;  // max r over walking agents: the grid's cell size
+  Summary summary;  // of now()
+  std::mutex summary_lock;
 
   Impl(Course course_in, AgentParameters agents_in, Scene scene_in, Options options_in);
 
@@ -103,12 +126,13 @@ struct Simulation::Impl {
   [[nodiscard]] Eigen::Vector2d agent_repulsion(std::size_t slot, const Eigen::Vector2d& p, double r) const;
   // Advances the agents in grid slots [begin, end) from `now` into `next` over [t0, t1]. Writes only those
   // agents' entries of `next` and `arrival`.
-  void advance(std::size_t begin, std::size_t end, double t0, double t1, State& next, std::size_t& failures);
+  void advance(std::size_t begin, std::size_t end, double t0, double t1, State& next, std::size_t& failures,
+               Summary& gathered);
 
   // Rebuilds the neighbour grid and the obstacle lists for a step over [t0, t1].
   void rebuild(double t0, double t1);
-  // Counts and the grid cell size from the current state.
-  void refresh();
+  // The summary and in_grid of the current state, serially (the constructor; steps gather it as they go).
+  void summarise();
   // Target advancement: while the agent at p is within R of its target or has passed it (is ahead of the line
   // through the target across the path), the target moves on. True when that happens at the last point.
   [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k) const {
@@ -202,6 +226,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   }
 
   // Starting positions: a centre inside an obstacle is an input error; an overlapping body is pushed out.
+  summarise();
   rebuild(0.0, 0.0);
   for (std::uint32_t j = 0; j < N; ++j) {
     Eigen::Vector2d p(s0.x[j], s0.y[j]);
@@ -223,32 +248,25 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
       arrival[j] = 0.0;
     }
   }
+  summarise();
   states[1] = s0;
-  refresh();
 }
 
-void Simulation::Impl::refresh() {
+void Simulation::Impl::summarise() {
   const State& s = now();
-  walking_count = arrived_count = 0;
-  largest_avoidance = 0;
+  summary = Summary{};
   for (std::uint32_t j = 0; j < N; ++j) {
-    const std::uint8_t st = s.status[j];
-    in_grid[j] = st != removed;
-    if (st == removed) continue;
-    largest_avoidance = std::max(largest_avoidance, avoidance(j, s.k[j]));
-    if (st == walking) {
-      ++walking_count;
-    } else {
-      ++arrived_count;
-    }
+    in_grid[j] = s.status[j] != removed;
+    summary.add(s.status[j], s.x[j], s.y[j], avoidance(j, s.k[j]));
   }
 }
 
 void Simulation::Impl::rebuild(double t0, double t1) {
   const State& s = now();
   // With avoidance off, cells only serve the obstacle lists: any size works, use the follow radius.
-  const double cell = options.avoid_weight > 0 && largest_avoidance > 0 ? largest_avoidance : options.follow_radius_m;
-  grid.build(s.x, s.y, in_grid, cell);
+  const double cell =
+      options.avoid_weight > 0 && summary.largest_avoidance > 0 ? summary.largest_avoidance : options.follow_radius_m;
+  grid.build(s.x, s.y, in_grid, summary.walking + summary.standing, summary.bounds, cell);
   obstacles.rebuild(grid, t0, t1);
 }
 
@@ -262,19 +280,51 @@ Eigen::Vector2d Simulation::Impl::agent_repulsion(std::size_t slot, const Eigen:
   const std::size_t c0 = cx > 0 ? cx - 1 : 0, c1 = std::min(cx + 1, nx - 1);
   const std::size_t r0 = cy > 0 ? cy - 1 : 0, r1 = std::min(cy + 1, ny - 1);
   double ax = 0, ay = 0;
+  bool coincident = false;
+  // Two candidates at a time in SSE2 lanes (GCC/Clang vector extensions), branch-free: every candidate computes
+  // r/d − 1 (on d = r when out of reach) and is masked by `near`. Lane sums are added in a fixed order, so the
+  // result does not depend on the thread count.
+  using Pair = double __attribute__((vector_size(16)));
+  using Mask = std::int64_t __attribute__((vector_size(16)));
+  const Pair vpx = {px, px}, vpy = {py, py}, vr = {r, r}, vr2 = {r2, r2}, zero = {0, 0}, one = {1, 1};
+  Pair vax = zero, vay = zero;
   for (std::size_t row = r0; row <= r1; ++row) {
     // The three cells of a row are consecutive slots.
     const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
-    for (std::uint32_t l = from; l < to; ++l) {
+    std::uint32_t l = from;
+    for (; l + 2 <= to; l += 2) {
+      Pair qx, qy;
+      std::memcpy(&qx, sx + l, sizeof qx);
+      std::memcpy(&qy, sy + l, sizeof qy);
+      const Pair dx = vpx - qx, dy = vpy - qy;
+      const Pair d2 = dx * dx + dy * dy;
+      const Mask near = (d2 < vr2) & (d2 > zero);
+      const Pair safe = near ? d2 : vr2;
+      const Pair root = {std::sqrt(safe[0]), std::sqrt(safe[1])};
+      const Pair c = near ? vr / root - one : zero;
+      vax += c * dx;
+      vay += c * dy;
+      coincident |= (d2[0] == 0 && l != slot) || (d2[1] == 0 && l + 1 != slot);
+    }
+    for (; l < to; ++l) {
       const double dx = px - sx[l], dy = py - sy[l];
       const double d2 = dx * dx + dy * dy;
-      if (d2 >= r2) continue;
-      if (d2 > 0) {
+      if (d2 < r2 && d2 > 0) {
         const double c = r / std::sqrt(d2) - 1.0;
         ax += c * dx;
         ay += c * dy;
-      } else if (l != slot) {
-        // Same place: (p_j − p_l)(r/d − 1) has length r − d → r, in a direction fixed by the pair.
+      }
+      coincident |= d2 == 0 && l != slot;
+    }
+  }
+  ax += vax[0] + vax[1];
+  ay += vay[0] + vay[1];
+  if (coincident) {
+    // Same place: (p_j − p_l)(r/d − 1) has length r − d → r, in a direction fixed by the pair.
+    for (std::size_t row = r0; row <= r1; ++row) {
+      const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
+      for (std::uint32_t l = from; l < to; ++l) {
+        if (l == slot || sx[l] != px || sy[l] != py) continue;
         const Eigen::Vector2d u = coincident_direction(order[slot], order[l]);
         ax += r * u.x();
         ay += r * u.y();
@@ -285,7 +335,7 @@ Eigen::Vector2d Simulation::Impl::agent_repulsion(std::size_t slot, const Eigen:
 }
 
 void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, double t1, State& next,
-                               std::size_t& failures) {
+                               std::size_t& failures, Summary& gathered) {
   const State& s = now();
   const std::uint32_t* order = grid.order().data();
   const double R = options.follow_radius_m;
@@ -347,6 +397,8 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
     next.k[j] = k;
     next.status[j] = status;
     next.side[j] = side;
+    in_grid[j] = status != removed;
+    gathered.add(status, q.x(), q.y(), avoidance(j, k));
   }
 }
 
@@ -354,14 +406,18 @@ void Simulation::Impl::step() {
   const double t0 = time_at(steps), t1 = time_at(steps + 1);
   rebuild(t0, t1);
   State& next = states[static_cast<std::size_t>(1 - current)];
+  Summary merged;
   parallel_for(N, grain, [&](std::size_t begin, std::size_t end) {
     std::size_t failures = 0;
-    advance(begin, end, t0, t1, next, failures);
+    Summary gathered;
+    advance(begin, end, t0, t1, next, failures, gathered);
     if (failures > 0) unresolved += failures;
+    const std::lock_guard<std::mutex> hold(summary_lock);
+    merged.merge(gathered);
   });
+  summary = merged;
   current = 1 - current;
   ++steps;
-  refresh();
 }
 
 // --- Simulation ---
@@ -377,7 +433,7 @@ std::size_t Simulation::agent_count() const noexcept { return impl_->N; }
 std::size_t Simulation::step_count() const noexcept { return impl_->steps; }
 double Simulation::time() const noexcept { return impl_->time_at(impl_->steps); }
 bool Simulation::finished() const noexcept {
-  return impl_->walking_count == 0 && (impl_->options.end_of_path == EndOfPath::stop || impl_->arrived_count == 0);
+  return impl_->summary.walking == 0 && (impl_->options.end_of_path == EndOfPath::stop || impl_->summary.standing == 0);
 }
 Eigen::Vector2d Simulation::position(std::size_t agent) const {
   assert(agent < impl_->N);
