@@ -1,0 +1,188 @@
+// Group motion editing (Kwon, Lee, Lee, Takahashi, SIGGRAPH 2008, §3–4; ../shared/design/METHODS.md §1): deform
+// a clip of a crowd by pinning and dragging agents while keeping its formations and trajectories.
+//
+// Method. The clip is sampled and turned into the space-time motion graph (throng/graph). Step 1 minimises
+// E1 = ES + α ET + β EST (Eq. 4–7) over all sampled positions subject to the handles (pins and drags) and the
+// general constraints. Step 2 (scale compensation, Eq. 8–10) fits each original formation triangle to its
+// step-1 copy by a rotation and a translation (no scale) and minimises E2 = ESC + α′ ET + β′ EST, where ESC asks
+// each edge of a spatial feature to match the fitted triangle's edge. Both are sparse linear least squares
+// solved by throng/linalg with the handles eliminated and the general constraints through a Schur complement,
+// so re-targeting handles (a drag) costs back-substitutions only.
+//
+// Decisions where the paper is open (see also throng/graph/features.h for features and weights):
+//  * Igarashi et al.'s closed form for Eq. 8 (a similar copy of the original triangle, fitted in least squares,
+//    then scaled back to the original size about its centroid) equals, in 2-D, the least-squares rigid fit of
+//    the original triangle onto the step-1 triangle: the optimal similarity and the optimal rotation share
+//    the angle arg Σ conj(p_k − p̄)(q_k − q̄). That formula is used; a collapsed step-1 triangle keeps angle 0.
+//  * Unknowns are x and y interleaved per vertex (2 per vertex): R90 couples them (Eq. 1).
+//  * A handle (pin or drag) sets a vertex; two handles on one vertex must agree (else: contradictory). A
+//    selection over a frame range acts on the samples in the range; its end frames become samples.
+//  * General constraints act on the samples they name: relative position of two agents (p_a − p_b = offset,
+//    default the original offset), velocity at a frame ((p(f+1) − p(f)) / (t(f+1) − t(f)), both frames made
+//    samples so the output meets it exactly; at the clip's last frame the backward difference), and motion
+//    along a line (the normal component of p − point is 0).
+//  * Every connected part of the graph (through features) needs two handled vertices at distinct original
+//    places: otherwise its position, rotation and scale are free and the system is singular (NumericalError
+//    naming the agents). Constraints do not count toward this.
+//  * Output: the edited clip at the source frame rate. The displacement (edited − original) at the samples is
+//    interpolated with a natural cubic spline in time and added to the original positions, so every sample is
+//    met exactly and the detail between samples is kept (z is kept as is). The time warp is another method.
+#pragma once
+
+#include <throng/core/crowd_motion.h>
+#include <throng/graph/clip.h>
+#include <throng/graph/features.h>
+#include <throng/graph/motion_graph.h>
+#include <throng/linalg/solver_options.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace throng::edit {
+
+/// Everything that shapes the deformation, with the paper's defaults where it has them.
+struct Options {
+  ClipOptions clip;            ///< frame range, agents, sampling step
+  FormationOptions formation;  ///< long-edge threshold and edge edits
+  FeatureOptions features;     ///< weight floor and degenerate-feature rule
+  double alpha = 1.0;          ///< α: weight of the temporal term ET in step 1 (Eq. 4), ≥ 0
+  double beta = 1.0;           ///< β: weight of the spatiotemporal term EST in step 1 (Eq. 4), ≥ 0
+  double alpha_prime = 1.0;    ///< α′: weight of ET in step 2 (Eq. 9), ≥ 0
+  double beta_prime = 1.0;     ///< β′: weight of EST in step 2 (Eq. 9), ≥ 0
+  bool scale_compensation = true;  ///< run step 2 (off: the result is step 1's)
+  linalg::SolverOptions solver;    ///< backend and its settings
+};
+
+/// Vertices chosen by agents and frames.
+struct Selection {
+  std::vector<std::int64_t> agents;  ///< agent ids; empty = every agent of the clip
+  std::size_t first_frame = 0;       ///< source frame, inclusive (clamped to the clip's first frame)
+  std::size_t last_frame = std::numeric_limits<std::size_t>::max();  ///< source frame, inclusive (default: clip's last)
+};
+
+/// Keeps one agent at one frame at `position` (metres; default: where it is in the input).
+struct Pin {
+  std::int64_t agent = 0;
+  std::size_t frame = 0;
+  std::optional<Eigen::Vector2d> position;
+};
+
+/// Moves the selected vertices rigidly: p ↦ pivot + R(rotation) (p − pivot) + offset.
+struct Drag {
+  Selection selection;
+  Eigen::Vector2d offset{0, 0};          ///< metres
+  double rotation = 0.0;                 ///< radians, counter-clockwise
+  std::optional<Eigen::Vector2d> pivot;  ///< metres; default: the centroid of the selected original positions
+};
+
+/// p(agent) − p(other) = offset at every sample of the frame range (default offset: the original one).
+struct RelativePosition {
+  std::int64_t agent = 0;
+  std::int64_t other = 0;
+  std::size_t first_frame = 0;
+  std::size_t last_frame = std::numeric_limits<std::size_t>::max();
+  std::optional<Eigen::Vector2d> offset;
+};
+
+/// The agent's velocity at `frame` (m/s), measured as (p(frame + 1) − p(frame)) / Δt.
+struct Velocity {
+  std::int64_t agent = 0;
+  std::size_t frame = 0;
+  Eigen::Vector2d velocity{0, 0};
+};
+
+/// The agent stays on the line through `point` along `direction` at every sample of the frame range.
+struct OnLine {
+  std::int64_t agent = 0;
+  std::size_t first_frame = 0;
+  std::size_t last_frame = std::numeric_limits<std::size_t>::max();
+  Eigen::Vector2d point{0, 0};
+  Eigen::Vector2d direction{1, 0};  ///< any non-zero length
+};
+
+using Constraint = std::variant<RelativePosition, Velocity, OnLine>;
+
+/// What the user asks for. Messages name entries as pins[k], drags[k], constraints[k].
+struct Request {
+  std::vector<Pin> pins;
+  std::vector<Drag> drags;
+  std::vector<Constraint> constraints;
+};
+
+/// Sizes, timings (seconds) and solver facts of an edit, for logs, reports and benchmarks.
+struct Report {
+  std::size_t samples = 0, agents = 0, unknowns = 0;
+  std::size_t spatial_features = 0, temporal_features = 0, spatiotemporal_features = 0;
+  std::size_t handles = 0;           ///< handled vertices
+  std::size_t constraint_rows = 0;   ///< scalar general-constraint rows
+  std::vector<std::int64_t> left_out;  ///< agents absent somewhere in the clip (not edited, not in the output)
+  double graph_seconds = 0;      ///< clip, Delaunay, features, both systems assembled
+  double precompute_seconds = 0; ///< analyse and factorise both steps (and Schur complements)
+  double solve_seconds = 0;      ///< last deform(): step 1, fitting, step 2
+  std::string factorization;     ///< backend method of step 1 (for example "CHOLMOD supernodal LLᵀ (METIS)")
+  std::string fallback;          ///< non-empty when the backend fell back, saying why
+  double max_constraint_residual = 0;  ///< metres, over both steps, last deform()
+  int factorizations = 0;              ///< numeric factorisations so far, both steps (a drag adds none)
+  int schur_columns = 0;               ///< back-substitutions spent on constraint columns so far, both steps
+};
+
+/// The stateful editor: build once, precompute once per handle set, deform per drag.
+///   positions (samples)  #samples*#agents by 2, row = clip().vertex(sample, agent)
+class Editor {
+ public:
+  /// Builds the clip (the request's frames become samples), the graph, the features and both systems.
+  /// Throws ConfigError for options or a request that do not fit the crowd (unknown agent, frame outside the
+  /// clip, an agent left out of the clip, bad values), naming the entry.
+  Editor(const CrowdMotion& crowd, const Options& options, const Request& request);
+  ~Editor();
+  Editor(const Editor&) = delete;
+  Editor& operator=(const Editor&) = delete;
+
+  /// Analyses and factorises both steps for the current handles and constraints. Throws NumericalError when the
+  /// system is singular (naming an agent and frame that are not determined).
+  void precompute();
+
+  /// Deforms for `request`. Same handled vertices and constraint kinds as before: back-substitutions only;
+  /// otherwise the handles or constraints are replaced first (refactorisation, or a new Schur complement).
+  /// Every frame it names must be a sample of this editor's clip (the constructor's request decides them).
+  /// Returns the final sample positions; throws NumericalError for contradictory constraints or handles.
+  [[nodiscard]] const Eigen::Matrix<double, Eigen::Dynamic, 2>& deform(const Request& request);
+
+  /// Step 1's result of the last deform() (equal to the final result without scale compensation).
+  [[nodiscard]] const Eigen::Matrix<double, Eigen::Dynamic, 2>& step1() const noexcept;
+
+  /// The edited clip at the source frame rate (see "Output" above): clip frames × clip agents, with the ids,
+  /// radii and species of the input.
+  [[nodiscard]] CrowdMotion resample(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& samples) const;
+
+  [[nodiscard]] const MotionGraph& graph() const noexcept;
+  [[nodiscard]] const FeatureSet& features() const noexcept;
+  [[nodiscard]] const Report& report() const noexcept;
+  [[nodiscard]] const Options& options() const noexcept;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// The result of a one-off edit.
+struct Result {
+  CrowdMotion crowd;  ///< the edited clip at the source frame rate
+  Report report;
+};
+
+/// One-off: build, precompute and deform once (what `throng edit` runs).
+[[nodiscard]] Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request);
+
+/// Checks option values (weights finite and ≥ 0, at least one term with a positive weight); throws ConfigError
+/// naming the option. Called by Editor; exposed for job parsers that want to fail early.
+void validate(const Options& options);
+
+}  // namespace throng::edit

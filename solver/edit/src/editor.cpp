@@ -1,0 +1,316 @@
+#include "request.h"
+#include "resample.h"
+#include "systems.h"
+
+#include <throng/core/errors.h>
+#include <throng/edit/edit.h>
+#include <throng/linalg/least_squares.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+namespace throng::edit {
+namespace {
+
+using Index = Eigen::Index;
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Disjoint sets over graph vertices (path halving, union by index: deterministic).
+class Components {
+ public:
+  explicit Components(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  std::size_t root(std::size_t v) {
+    while (parent_[v] != v) v = parent_[v] = parent_[parent_[v]];
+    return v;
+  }
+  void join(std::size_t a, std::size_t b) {
+    a = root(a);
+    b = root(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+// The similarity modes of the unconstrained step-1 energy (translations, rotation, scaling of all vertices),
+// interleaved x, y: a near-null-space hint for multigrid backends.
+Eigen::MatrixXd similarity_modes(const Positions& p) {
+  const Eigen::RowVector2d centre = p.colwise().mean();
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
+  for (Index v = 0; v < p.rows(); ++v) {
+    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
+    modes(2 * v, 0) = 1.0;
+    modes(2 * v + 1, 1) = 1.0;
+    modes(2 * v, 2) = -y;
+    modes(2 * v + 1, 2) = x;
+    modes(2 * v, 3) = x;
+    modes(2 * v + 1, 3) = y;
+  }
+  return modes;
+}
+
+Positions as_positions(const Eigen::MatrixXd& x) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
+}
+
+// Same shape, pattern and values (both compressed, as setFromTriplets leaves them).
+bool same_matrix(const linalg::SparseMatrix& a, const linalg::SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const auto nnz = static_cast<std::size_t>(a.nonZeros());
+  const auto outer = static_cast<std::size_t>(a.outerSize()) + 1;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + outer, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
+}
+
+}  // namespace
+
+void validate(const Options& o) {
+  for (auto [name, value] : {std::pair{"alpha", o.alpha}, std::pair{"beta", o.beta}, std::pair{"alpha_prime", o.alpha_prime},
+                             std::pair{"beta_prime", o.beta_prime}}) {
+    if (!std::isfinite(value) || value < 0) {
+      throw ConfigError(std::string(name) + " " + std::to_string(value) + ": expected a finite weight ≥ 0");
+    }
+  }
+  if (!std::isfinite(o.features.min_length) || o.features.min_length <= 0) {
+    throw ConfigError("features.min_length " + std::to_string(o.features.min_length) + ": expected a length > 0 in metres");
+  }
+  if (!(o.features.degenerate_ratio >= 0 && o.features.degenerate_ratio < 1)) {
+    throw ConfigError("features.degenerate_ratio " + std::to_string(o.features.degenerate_ratio) + ": expected [0, 1)");
+  }
+}
+
+struct Editor::State {
+  State(const Options& o) : options(o), step1_solver(o.solver), step2_solver(o.solver) {}
+
+  Options options;
+  std::vector<std::int64_t> crowd_ids;
+  CrowdMotion source;  // the clip's frames and agents at the source rate
+  MotionGraph graph;
+  FeatureSet features;
+  Objective step1, step2;
+  linalg::ConstrainedLeastSquares step1_solver, step2_solver;
+  ResolvedRequest current;
+  bool has_request = false;
+  Request request;  // the one `current` was resolved from, for messages
+  Positions x1, x2;
+  Report report;
+
+  [[nodiscard]] const Clip& clip() const { return graph.clip; }
+
+  std::string vertex_name(Index v) const {
+    const auto n = static_cast<Index>(clip().agent_count());
+    return "agent " + std::to_string(clip().ids[static_cast<std::size_t>(v % n)]) + " at frame " +
+           std::to_string(clip().frames[static_cast<std::size_t>(v / n)]);
+  }
+
+  // Every part of the graph tied together by features (of terms with a positive weight) needs two handles
+  // at distinct original places, or a handle on its only vertex: otherwise step 1 is singular.
+  void check_determined(const std::vector<Index>& handles) const {
+    const std::size_t vertices = graph.vertex_count();
+    Components parts(vertices);
+    auto join = [&](const std::vector<Feature>& set, double weight) {
+      if (weight <= 0) return;
+      for (const Feature& f : set) {
+        parts.join(static_cast<std::size_t>(f.u), static_cast<std::size_t>(f.v));
+        parts.join(static_cast<std::size_t>(f.v), static_cast<std::size_t>(f.w));
+      }
+    };
+    join(features.spatial, 1.0);
+    join(features.temporal, options.alpha);
+    join(features.spatiotemporal, options.beta);
+    // Per part: its size, and a handle and whether a second one sits elsewhere.
+    std::vector<std::size_t> size(vertices, 0);
+    std::vector<Index> first_handle(vertices, -1);
+    std::vector<char> spread(vertices, 0);
+    for (std::size_t v = 0; v < vertices; ++v) ++size[parts.root(v)];
+    const double scale = 1e-9 * (1.0 + clip().positions.cwiseAbs().maxCoeff());
+    for (Index h : handles) {
+      const std::size_t r = parts.root(static_cast<std::size_t>(h));
+      if (first_handle[r] < 0) {
+        first_handle[r] = h;
+      } else if ((clip().positions.row(h) - clip().positions.row(first_handle[r])).norm() > scale) {
+        spread[r] = 1;
+      }
+    }
+    for (std::size_t v = 0; v < vertices; ++v) {
+      if (parts.root(v) != v) continue;
+      const bool determined = spread[v] || (size[v] == 1 && first_handle[v] >= 0);
+      if (determined) continue;
+      std::set<std::int64_t> agents;
+      std::size_t first_frame = clip().last_frame, last_frame = clip().first_frame;
+      const auto n = clip().agent_count();
+      for (std::size_t u = 0; u < vertices; ++u) {
+        if (parts.root(u) != v) continue;
+        agents.insert(clip().ids[u % n]);
+        first_frame = std::min(first_frame, clip().frames[u / n]);
+        last_frame = std::max(last_frame, clip().frames[u / n]);
+      }
+      std::ostringstream list;
+      std::size_t shown = 0;
+      for (std::int64_t id : agents) {
+        if (shown++ == 10) {
+          list << ", ...";
+          break;
+        }
+        list << (shown > 1 ? ", " : "") << id;
+      }
+      const std::string held = first_handle[v] < 0 ? "no handle" : "handles at one place only";
+      const std::string span = " over frames " + std::to_string(first_frame) + ".." + std::to_string(last_frame);
+      const std::string fix = "pin or drag at least two of its vertices at different places";
+      if (size[v] == vertices) {
+        throw NumericalError("the system is singular: the clip holds " + held +
+                             ", so the group's position, rotation and scale are free: " + fix);
+      }
+      throw NumericalError("the system is singular: agent" + std::string(agents.size() > 1 ? "s " : " ") + list.str() +
+                           span + (agents.size() > 1 ? " form" : " forms") + " a group joined to the rest by no feature (cut off by formation.max_edge_length "
+                           "or edge edits) with " + held + ", so its position, rotation and scale are free: " + fix +
+                           ", or join it to the others");
+    }
+  }
+
+  void apply(ResolvedRequest resolved, const Request& from) {
+    if (!has_request || resolved.handle_vertices != current.handle_vertices) {
+      check_determined(resolved.handle_vertices);
+      const auto pinned = resolved.pinned_unknowns();
+      step1_solver.set_pinned(pinned);
+      if (options.scale_compensation) step2_solver.set_pinned(pinned);
+    }
+    if (!has_request || !same_matrix(resolved.C, current.C)) {
+      step1_solver.set_constraints(resolved.C);
+      if (options.scale_compensation) step2_solver.set_constraints(resolved.C);
+    }
+    current = std::move(resolved);
+    request = from;
+    has_request = true;
+    report.handles = current.handle_vertices.size();
+    report.constraint_rows = static_cast<std::size_t>(current.C.rows());
+  }
+
+  void update_counts() {
+    report.factorizations = step1_solver.report().factorizations + step2_solver.report().factorizations;
+    report.schur_columns = step1_solver.report().schur_columns + step2_solver.report().schur_columns;
+  }
+
+  // Runs a solver step, turning its errors into messages in the user's terms.
+  template <typename Step>
+  auto in_user_terms(Step&& step) -> decltype(step()) {
+    try {
+      return step();
+    } catch (const linalg::SingularMatrixError& e) {
+      const Index unknown = e.index();
+      throw NumericalError(std::string(e.what()) +
+                           (unknown >= 0 ? " (first undetermined: " + vertex_name(unknown / 2) + ")" : std::string()));
+    } catch (const linalg::ConstraintError& e) {
+      std::set<std::size_t> sources;
+      for (Index row : e.rows()) sources.insert(current.row_source[static_cast<std::size_t>(row)]);
+      std::string names;
+      for (std::size_t k : sources) names += (names.empty() ? "" : " and ") + describe(request, k);
+      throw NumericalError("contradictory constraints: " + names +
+                           (sources.size() == 1 ? " cannot be met together with the pins and drags"
+                                                : " cannot all be met (with the pins and drags)") +
+                           " [" + e.what() + "]");
+    }
+  }
+};
+
+Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& request)
+    : state_(std::make_unique<State>(options)) {
+  validate(options);
+  State& s = *state_;
+  const auto start = Clock::now();
+  s.crowd_ids = crowd.ids;
+  const Clip bounds = make_clip(crowd, options.clip);
+  const std::vector<std::size_t> frames = required_frames(request, bounds, crowd.ids);
+  s.graph = build_motion_graph(make_clip(crowd, options.clip, frames), options.formation);
+  s.features = compute_features(s.graph, options.features);
+  s.source = slice_clip(crowd, s.graph.clip);
+  const auto vertices = static_cast<Index>(s.graph.vertex_count());
+  const Eigen::MatrixXd modes = similarity_modes(s.graph.clip.positions);
+  s.step1 = step1_objective(s.features, vertices, options.alpha, options.beta);
+  s.step1_solver.set_objective(s.step1.A, s.step1.weights);
+  s.step1_solver.set_near_null_space(modes, 2);
+  if (options.scale_compensation) {
+    s.step2 = step2_objective(s.features, vertices, options.alpha_prime, options.beta_prime);
+    s.step2_solver.set_objective(s.step2.A, s.step2.weights);
+    s.step2_solver.set_near_null_space(modes, 2);
+  }
+  s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
+
+  Report& r = s.report;
+  r.samples = s.graph.sample_count();
+  r.agents = s.graph.agent_count();
+  r.unknowns = 2 * s.graph.vertex_count();
+  r.spatial_features = s.features.spatial.size();
+  r.temporal_features = s.features.temporal.size();
+  r.spatiotemporal_features = s.features.spatiotemporal.size();
+  r.left_out = s.graph.clip.left_out;
+  r.graph_seconds = seconds_since(start);
+}
+
+Editor::~Editor() = default;
+
+void Editor::precompute() {
+  State& s = *state_;
+  const auto start = Clock::now();
+  s.in_user_terms([&] {
+    s.step1_solver.precompute();
+    if (s.options.scale_compensation) s.step2_solver.precompute();
+  });
+  s.report.precompute_seconds = seconds_since(start);
+  s.report.factorization = s.step1_solver.report().factorization.method;
+  s.report.fallback = s.step1_solver.report().factorization.fallback_reason;
+  s.update_counts();
+}
+
+const Eigen::Matrix<double, Eigen::Dynamic, 2>& Editor::deform(const Request& request) {
+  State& s = *state_;
+  s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
+  if (!s.step1_solver.is_ready() || (s.options.scale_compensation && !s.step2_solver.is_ready())) precompute();
+  const auto start = Clock::now();
+  const Eigen::VectorXd pins = s.current.pin_values();
+  s.x1 = as_positions(s.in_user_terms([&] { return s.step1_solver.solve(s.step1.b, pins, s.current.d); }));
+  s.report.max_constraint_residual = s.step1_solver.report().max_constraint_residual;
+  if (s.options.scale_compensation) {
+    set_step2_targets(s.features, s.graph.clip.positions, s.x1, s.step2.b);
+    s.x2 = as_positions(s.in_user_terms([&] { return s.step2_solver.solve(s.step2.b, pins, s.current.d); }));
+    s.report.max_constraint_residual = std::max(s.report.max_constraint_residual, s.step2_solver.report().max_constraint_residual);
+  } else {
+    s.x2 = s.x1;
+  }
+  s.report.solve_seconds = seconds_since(start);
+  s.update_counts();
+  return s.x2;
+}
+
+const Eigen::Matrix<double, Eigen::Dynamic, 2>& Editor::step1() const noexcept { return state_->x1; }
+
+CrowdMotion Editor::resample(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& samples) const {
+  if (samples.rows() != static_cast<Index>(state_->graph.vertex_count())) {
+    throw std::invalid_argument("Editor::resample: " + std::to_string(samples.rows()) + " rows for " +
+                                std::to_string(state_->graph.vertex_count()) + " vertices");
+  }
+  return resample_clip(state_->source, state_->graph.clip, samples);
+}
+
+const MotionGraph& Editor::graph() const noexcept { return state_->graph; }
+const FeatureSet& Editor::features() const noexcept { return state_->features; }
+const Report& Editor::report() const noexcept { return state_->report; }
+const Options& Editor::options() const noexcept { return state_->options; }
+
+Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request) {
+  Editor editor(crowd, options, request);
+  editor.precompute();
+  const auto& samples = editor.deform(request);
+  return {editor.resample(samples), editor.report()};
+}
+
+}  // namespace throng::edit

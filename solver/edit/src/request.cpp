@@ -1,0 +1,297 @@
+#include "request.h"
+
+#include <throng/core/errors.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace throng::edit {
+namespace {
+
+using Index = Eigen::Index;
+constexpr std::size_t open_end = std::numeric_limits<std::size_t>::max();
+
+std::string clip_range(const Clip& clip) {
+  return "[" + std::to_string(clip.first_frame) + ", " + std::to_string(clip.last_frame) + "]";
+}
+
+std::string point(const Eigen::Vector2d& p) {
+  std::ostringstream out;
+  out << "(" << p.x() << ", " << p.y() << ")";
+  return out.str();
+}
+
+// The graph agent with `id`, or a ConfigError saying why it is not in the clip.
+std::size_t agent(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, std::int64_t id, const std::string& where) {
+  const long j = clip.agent_of_id(id);
+  if (j >= 0) return static_cast<std::size_t>(j);
+  if (std::find(crowd_ids.begin(), crowd_ids.end(), id) == crowd_ids.end()) {
+    throw ConfigError(where + ": no agent with id " + std::to_string(id) + " in the crowd");
+  }
+  const bool left_out = std::find(clip.left_out.begin(), clip.left_out.end(), id) != clip.left_out.end();
+  throw ConfigError(where + ": agent " + std::to_string(id) +
+                    (left_out ? " is absent at some frames of the clip " + clip_range(clip) +
+                                    " and was left out: only agents present over the whole clip can be edited"
+                              : " is not in the clip " + clip_range(clip) +
+                                    " (not among clip.agents, or absent from all of it)"));
+}
+
+void check_frame(const Clip& clip, std::size_t frame, const std::string& where) {
+  if (frame < clip.first_frame || frame > clip.last_frame) {
+    throw ConfigError(where + " " + std::to_string(frame) + " is outside the clip " + clip_range(clip));
+  }
+}
+
+// The frame range [first, last] clamped to the clip; a ConfigError when it misses the clip.
+std::pair<std::size_t, std::size_t> clamp_range(const Clip& clip, std::size_t first, std::size_t last, const std::string& where) {
+  if (first > last) {
+    throw ConfigError(where + ": first_frame " + std::to_string(first) + " is after last_frame " + std::to_string(last));
+  }
+  if (first > clip.last_frame || last < clip.first_frame) {
+    throw ConfigError(where + ": frames [" + std::to_string(first) + ", " +
+                      (last == open_end ? std::string("end") : std::to_string(last)) + "] are outside the clip " +
+                      clip_range(clip));
+  }
+  return {std::max(first, clip.first_frame), std::min(last, clip.last_frame)};
+}
+
+// Samples whose source frame lies in [first, last] (already clamped); a ConfigError when there is none.
+std::vector<std::size_t> samples_in(const Clip& clip, std::size_t first, std::size_t last, const std::string& where) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < clip.sample_count(); ++i) {
+    if (clip.frames[i] >= first && clip.frames[i] <= last) out.push_back(i);
+  }
+  if (out.empty()) {
+    throw ConfigError(where + ": frames [" + std::to_string(first) + ", " + std::to_string(last) + "] hold no sample");
+  }
+  return out;
+}
+
+std::size_t sample_at(const Clip& clip, std::size_t frame, const std::string& where) {
+  check_frame(clip, frame, where);
+  const long s = clip.sample_of_frame(frame);
+  if (s < 0) {
+    throw ConfigError(where + " " + std::to_string(frame) +
+                      " is not a sample of this edit's clip (an editor samples the frames of the request it was "
+                      "built with; build a new one)");
+  }
+  return static_cast<std::size_t>(s);
+}
+
+// The two frames a velocity constraint differences: (f, f + 1), or (f − 1, f) at the clip's last frame.
+std::pair<std::size_t, std::size_t> velocity_frames(const Clip& clip, std::size_t frame) {
+  return frame < clip.last_frame ? std::pair{frame, frame + 1} : std::pair{frame - 1, frame};
+}
+
+std::vector<std::size_t> selected_agents(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, const std::vector<std::int64_t>& ids,
+                                         const std::string& where) {
+  std::vector<std::size_t> out;
+  if (ids.empty()) {
+    for (std::size_t j = 0; j < clip.agent_count(); ++j) out.push_back(j);
+  } else {
+    for (std::int64_t id : ids) out.push_back(agent(clip, crowd_ids, id, where + ".agents"));
+  }
+  return out;
+}
+
+Eigen::Vector2d original(const Clip& clip, std::size_t sample, std::size_t agent_index) {
+  return clip.positions.row(clip.vertex(sample, agent_index)).transpose();
+}
+
+}  // namespace
+
+std::vector<Eigen::Index> ResolvedRequest::pinned_unknowns() const {
+  std::vector<Index> out;
+  out.reserve(2 * handle_vertices.size());
+  for (Index v : handle_vertices) {
+    out.push_back(2 * v);
+    out.push_back(2 * v + 1);
+  }
+  return out;
+}
+
+Eigen::VectorXd ResolvedRequest::pin_values() const {
+  Eigen::VectorXd out(2 * handle_targets.rows());
+  for (Index k = 0; k < handle_targets.rows(); ++k) out.segment<2>(2 * k) = handle_targets.row(k).transpose();
+  return out;
+}
+
+std::string describe(const Request& request, std::size_t k) {
+  std::ostringstream out;
+  out << "constraints[" << k << "] (";
+  std::visit(
+      [&](const auto& c) {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, RelativePosition>) {
+          out << "position of agent " << c.agent << " relative to agent " << c.other;
+        } else if constexpr (std::is_same_v<T, Velocity>) {
+          out << "velocity of agent " << c.agent << " at frame " << c.frame;
+        } else {
+          out << "agent " << c.agent << " on a line";
+        }
+      },
+      request.constraints[k]);
+  out << ")";
+  return out.str();
+}
+
+std::vector<std::size_t> required_frames(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids) {
+  std::vector<std::size_t> frames;
+  for (std::size_t k = 0; k < request.pins.size(); ++k) {
+    const Pin& p = request.pins[k];
+    const std::string where = "pins[" + std::to_string(k) + "]";
+    (void)agent(clip, crowd_ids, p.agent, where + ".agent");
+    check_frame(clip, p.frame, where + ".frame");
+    frames.push_back(p.frame);
+  }
+  for (std::size_t k = 0; k < request.drags.size(); ++k) {
+    const Drag& d = request.drags[k];
+    const std::string where = "drags[" + std::to_string(k) + "]";
+    (void)selected_agents(clip, crowd_ids, d.selection.agents, where);
+    const auto [first, last] = clamp_range(clip, d.selection.first_frame, d.selection.last_frame, where);
+    frames.push_back(first);
+    frames.push_back(last);
+  }
+  for (std::size_t k = 0; k < request.constraints.size(); ++k) {
+    const std::string where = "constraints[" + std::to_string(k) + "]";
+    std::visit(
+        [&](const auto& c) {
+          using T = std::decay_t<decltype(c)>;
+          (void)agent(clip, crowd_ids, c.agent, where + ".agent");
+          if constexpr (std::is_same_v<T, Velocity>) {
+            check_frame(clip, c.frame, where + ".frame");
+            const auto [f0, f1] = velocity_frames(clip, c.frame);
+            frames.push_back(f0);
+            frames.push_back(f1);
+          } else {
+            if constexpr (std::is_same_v<T, RelativePosition>) {
+              (void)agent(clip, crowd_ids, c.other, where + ".other");
+              if (c.other == c.agent) throw ConfigError(where + ": agent and other are both " + std::to_string(c.agent));
+            } else {
+              if (!(c.direction.norm() > 0) || !c.direction.allFinite()) {
+                throw ConfigError(where + ".direction " + point(c.direction) + ": expected a non-zero finite vector");
+              }
+            }
+            const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
+            frames.push_back(first);
+            frames.push_back(last);
+          }
+        },
+        request.constraints[k]);
+  }
+  return frames;
+}
+
+ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids) {
+  // Handles: vertex → target and who set it; disagreement is a contradiction.
+  std::map<Index, std::pair<Eigen::Vector2d, std::string>> handles;
+  auto place = [&](std::size_t sample, std::size_t agent_index, const Eigen::Vector2d& target, const std::string& who) {
+    if (!target.allFinite()) throw ConfigError(who + ": target position " + point(target) + " is not finite");
+    const Index v = clip.vertex(sample, agent_index);
+    const auto [it, inserted] = handles.emplace(v, std::pair{target, who});
+    if (!inserted && (it->second.first - target).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + target.cwiseAbs().maxCoeff())) {
+      throw NumericalError("contradictory handles: " + it->second.second + " and " + who + " both place agent " +
+                           std::to_string(clip.ids[agent_index]) + " at frame " + std::to_string(clip.frames[sample]) +
+                           ", at " + point(it->second.first) + " and " + point(target));
+    }
+  };
+  for (std::size_t k = 0; k < request.pins.size(); ++k) {
+    const Pin& p = request.pins[k];
+    const std::string where = "pins[" + std::to_string(k) + "]";
+    const std::size_t j = agent(clip, crowd_ids, p.agent, where + ".agent");
+    const std::size_t s = sample_at(clip, p.frame, where + ".frame");
+    place(s, j, p.position.value_or(original(clip, s, j)), where);
+  }
+  for (std::size_t k = 0; k < request.drags.size(); ++k) {
+    const Drag& d = request.drags[k];
+    const std::string where = "drags[" + std::to_string(k) + "]";
+    if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) {
+      throw ConfigError(where + ": offset, rotation and pivot must be finite");
+    }
+    const auto agents = selected_agents(clip, crowd_ids, d.selection.agents, where);
+    const auto [first, last] = clamp_range(clip, d.selection.first_frame, d.selection.last_frame, where);
+    const auto samples = samples_in(clip, first, last, where);
+    Eigen::Vector2d pivot = Eigen::Vector2d::Zero();
+    if (d.pivot) {
+      pivot = *d.pivot;
+    } else {
+      for (std::size_t s : samples)
+        for (std::size_t j : agents) pivot += original(clip, s, j);
+      pivot /= static_cast<double>(samples.size() * agents.size());
+    }
+    const Eigen::Rotation2Dd turn(d.rotation);
+    for (std::size_t s : samples) {
+      for (std::size_t j : agents) {
+        // Without rotation the target is exactly original + offset (no round trip through the pivot).
+        const Eigen::Vector2d p = original(clip, s, j);
+        place(s, j, d.rotation == 0.0 ? Eigen::Vector2d(p + d.offset) : Eigen::Vector2d(pivot + turn * (p - pivot) + d.offset), where);
+      }
+    }
+  }
+
+  ResolvedRequest out;
+  out.handle_targets.resize(static_cast<Index>(handles.size()), 2);
+  for (const auto& [v, target] : handles) {
+    out.handle_targets.row(static_cast<Index>(out.handle_vertices.size())) = target.first.transpose();
+    out.handle_vertices.push_back(v);
+  }
+
+  // General constraints, one or two rows per sample.
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> d;
+  auto row = [&](std::size_t source, std::initializer_list<std::pair<Index, double>> terms, double value) {
+    const auto r = static_cast<Index>(d.size());
+    for (const auto& [unknown, coefficient] : terms) entries.emplace_back(r, unknown, coefficient);
+    d.push_back(value);
+    out.row_source.push_back(source);
+  };
+  for (std::size_t k = 0; k < request.constraints.size(); ++k) {
+    const std::string where = "constraints[" + std::to_string(k) + "]";
+    std::visit(
+        [&](const auto& c) {
+          using T = std::decay_t<decltype(c)>;
+          const std::size_t a = agent(clip, crowd_ids, c.agent, where + ".agent");
+          if constexpr (std::is_same_v<T, Velocity>) {
+            if (!c.velocity.allFinite()) throw ConfigError(where + ".velocity is not finite");
+            check_frame(clip, c.frame, where + ".frame");
+            const auto [f0, f1] = velocity_frames(clip, c.frame);
+            const std::size_t s0 = sample_at(clip, f0, where + ".frame"), s1 = sample_at(clip, f1, where + ".frame");
+            const double dt = clip.times[s1] - clip.times[s0];
+            const Index v0 = clip.vertex(s0, a), v1 = clip.vertex(s1, a);
+            for (int axis = 0; axis < 2; ++axis) row(k, {{2 * v1 + axis, 1.0}, {2 * v0 + axis, -1.0}}, c.velocity[axis] * dt);
+          } else {
+            const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
+            const auto samples = samples_in(clip, first, last, where);
+            if constexpr (std::is_same_v<T, RelativePosition>) {
+              const std::size_t b = agent(clip, crowd_ids, c.other, where + ".other");
+              if (c.offset && !c.offset->allFinite()) throw ConfigError(where + ".offset is not finite");
+              for (std::size_t s : samples) {
+                const Eigen::Vector2d offset = c.offset.value_or(original(clip, s, a) - original(clip, s, b));
+                const Index va = clip.vertex(s, a), vb = clip.vertex(s, b);
+                for (int axis = 0; axis < 2; ++axis) row(k, {{2 * va + axis, 1.0}, {2 * vb + axis, -1.0}}, offset[axis]);
+              }
+            } else {
+              if (!c.point.allFinite() || !c.direction.allFinite() || !(c.direction.norm() > 0)) {
+                throw ConfigError(where + ": point and direction must be finite, direction non-zero");
+              }
+              const Eigen::Vector2d normal = Eigen::Vector2d(-c.direction.y(), c.direction.x()).normalized();
+              for (std::size_t s : samples) {
+                const Index v = clip.vertex(s, a);
+                row(k, {{2 * v, normal.x()}, {2 * v + 1, normal.y()}}, normal.dot(c.point));
+              }
+            }
+          }
+        },
+        request.constraints[k]);
+  }
+  out.C.resize(static_cast<Index>(d.size()), 2 * static_cast<Index>(clip.positions.rows()));
+  out.C.setFromTriplets(entries.begin(), entries.end());
+  out.d = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Index>(d.size()));
+  return out;
+}
+
+}  // namespace throng::edit

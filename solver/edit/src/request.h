@@ -1,0 +1,46 @@
+// Turning a Request (pins, drags, general constraints in the user's terms: agent ids and source frames) into
+// what the solver needs: handled vertices with targets, and constraint rows C x = d over the unknowns.
+#pragma once
+
+#include <throng/edit/edit.h>
+#include <throng/linalg/solver_options.h>
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace throng::edit {
+
+/// The request in solver terms. Unknown 2v is x of vertex v, 2v + 1 its y.
+///   handle_vertices  #handles graph vertices, increasing;   handle_targets  #handles by 2 (metres)
+///   C                #rows by 2·#vertices;                    d               #rows
+///   row_source       #rows, the index k of constraints[k] each row comes from
+struct ResolvedRequest {
+  std::vector<Eigen::Index> handle_vertices;
+  Eigen::Matrix<double, Eigen::Dynamic, 2> handle_targets;
+  linalg::SparseMatrix C;
+  Eigen::VectorXd d;
+  std::vector<std::size_t> row_source;
+
+  /// The pinned unknowns (2v, 2v + 1 for each handled vertex) and their values, in the same order.
+  [[nodiscard]] std::vector<Eigen::Index> pinned_unknowns() const;
+  [[nodiscard]] Eigen::VectorXd pin_values() const;
+};
+
+/// The source frames the request names, to be made samples: pin frames, both frames of each velocity, and the
+/// first and last frame of every range (clamped to the clip). Validates agents and frames against `clip`
+/// (built without them; crowd_ids are all the crowd's ids, for messages) and throws ConfigError naming the entry, for example "pins[2].frame 400 is outside
+/// the clip [0, 299]" or "drags[0].agents: agent 17 is absent at some frames of the clip ...".
+[[nodiscard]] std::vector<std::size_t> required_frames(const Request& request, const Clip& clip,
+                                                     const std::vector<std::int64_t>& crowd_ids);
+
+/// Resolves the request on the final clip. Frames of pins and velocities must be samples (ConfigError
+/// otherwise); ranges act on the samples inside them. Two handles placing one vertex differently are a
+/// NumericalError (contradictory).
+[[nodiscard]] ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids);
+
+/// "constraints[3] (velocity of agent 12 at frame 40)": how messages name a general constraint.
+[[nodiscard]] std::string describe(const Request& request, std::size_t constraint);
+
+}  // namespace throng::edit

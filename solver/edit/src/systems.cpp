@@ -1,0 +1,133 @@
+#include "systems.h"
+
+#include <throng/core/parallel.h>
+
+#include <complex>
+#include <vector>
+
+namespace throng::edit {
+namespace {
+
+using Complex = std::complex<double>;
+using Triplet = Eigen::Triplet<double>;
+
+// Appends the two real rows of Σ coefficient_k · z_k (complex coefficients on complex unknowns z = x + i y):
+// (a z)_x = a_r x − a_i y,  (a z)_y = a_i x + a_r y.
+void complex_rows(Eigen::Index row, const int (&vertex)[3], const Complex (&coefficient)[3], std::vector<Triplet>& out) {
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Index x = 2 * static_cast<Eigen::Index>(vertex[k]);
+    const Complex a = coefficient[k];
+    out.emplace_back(row, x, a.real());
+    if (a.imag() != 0.0) out.emplace_back(row, x + 1, -a.imag());
+    if (a.imag() != 0.0) out.emplace_back(row + 1, x, a.imag());
+    out.emplace_back(row + 1, x + 1, a.real());
+  }
+}
+
+// Rows for one feature set: residual v − (1 − c) u − c w − r, weight · term weight.
+void feature_rows(const std::vector<Feature>& features, double term_weight, Eigen::Index first_row,
+                  std::vector<Triplet>& entries, Eigen::VectorXd& weights, Eigen::VectorXd& b) {
+  for (std::size_t k = 0; k < features.size(); ++k) {
+    const Feature& f = features[k];
+    const Eigen::Index row = first_row + 2 * static_cast<Eigen::Index>(k);
+    const int vertex[3] = {f.v, f.u, f.w};
+    const Complex coefficient[3] = {1.0, -(1.0 - f.c), -f.c};
+    complex_rows(row, vertex, coefficient, entries);
+    weights[row] = weights[row + 1] = f.weight * term_weight;
+    b[row] = f.offset.real();
+    b[row + 1] = f.offset.imag();
+  }
+}
+
+Objective assemble(Eigen::Index rows, Eigen::Index vertices, const std::vector<Triplet>& entries, Eigen::VectorXd weights,
+                   Eigen::VectorXd b) {
+  Objective o;
+  o.A.resize(rows, 2 * vertices);
+  o.A.setFromTriplets(entries.begin(), entries.end());
+  o.A.makeCompressed();
+  o.weights = std::move(weights);
+  o.b = std::move(b);
+  return o;
+}
+
+Eigen::Index rows_of(const std::vector<Feature>& f) { return 2 * static_cast<Eigen::Index>(f.size()); }
+
+}  // namespace
+
+Objective step1_objective(const FeatureSet& features, Eigen::Index vertices, double alpha, double beta) {
+  const Eigen::Index rs = rows_of(features.spatial), rt = rows_of(features.temporal), rst = rows_of(features.spatiotemporal);
+  const Eigen::Index rows = rs + rt + rst;
+  std::vector<Triplet> entries;
+  entries.reserve(static_cast<std::size_t>(rows) * 6);
+  Eigen::VectorXd weights(rows), b(rows);
+  feature_rows(features.spatial, 1.0, 0, entries, weights, b);
+  feature_rows(features.temporal, alpha, rs, entries, weights, b);
+  feature_rows(features.spatiotemporal, beta, rs + rt, entries, weights, b);
+  return assemble(rows, vertices, entries, std::move(weights), std::move(b));
+}
+
+Objective step2_objective(const FeatureSet& features, Eigen::Index vertices, double alpha_prime, double beta_prime) {
+  // ESC: per spatial feature (u, v, w) the rows x_v − x_u, y_v − y_u, x_v − x_w, y_v − y_w.
+  const Eigen::Index rs = 4 * static_cast<Eigen::Index>(features.spatial.size());
+  const Eigen::Index rt = rows_of(features.temporal), rst = rows_of(features.spatiotemporal);
+  const Eigen::Index rows = rs + rt + rst;
+  std::vector<Triplet> entries;
+  entries.reserve(static_cast<std::size_t>(rows) * 6);
+  Eigen::VectorXd weights(rows), b = Eigen::VectorXd::Zero(rows);
+  for (std::size_t k = 0; k < features.spatial.size(); ++k) {
+    const Feature& f = features.spatial[k];
+    const Eigen::Index row = 4 * static_cast<Eigen::Index>(k);
+    for (int e = 0; e < 2; ++e) {
+      const Eigen::Index other = 2 * static_cast<Eigen::Index>(e == 0 ? f.u : f.w);
+      for (int d = 0; d < 2; ++d) {
+        const Eigen::Index r = row + 2 * e + d;
+        entries.emplace_back(r, 2 * static_cast<Eigen::Index>(f.v) + d, 1.0);
+        entries.emplace_back(r, other + d, -1.0);
+        weights[r] = f.weight;
+      }
+    }
+  }
+  feature_rows(features.temporal, alpha_prime, rs, entries, weights, b);
+  feature_rows(features.spatiotemporal, beta_prime, rs + rt, entries, weights, b);
+  return assemble(rows, vertices, entries, std::move(weights), std::move(b));
+}
+
+Eigen::Matrix<double, 3, 2> fit_without_scale(const Eigen::Matrix<double, 3, 2>& from, const Eigen::Matrix<double, 3, 2>& to) {
+  const Eigen::RowVector2d from_centre = from.colwise().mean();
+  const Eigen::RowVector2d to_centre = to.colwise().mean();
+  // s = Σ conj(p_k) q_k over centred points; the best rotation turns by arg s.
+  Complex s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Complex p(from(k, 0) - from_centre.x(), from(k, 1) - from_centre.y());
+    const Complex q(to(k, 0) - to_centre.x(), to(k, 1) - to_centre.y());
+    s += std::conj(p) * q;
+  }
+  const Complex turn = std::abs(s) > 0 ? s / std::abs(s) : Complex(1, 0);
+  Eigen::Matrix<double, 3, 2> fitted;
+  for (int k = 0; k < 3; ++k) {
+    const Complex p(from(k, 0) - from_centre.x(), from(k, 1) - from_centre.y());
+    const Complex q = turn * p;
+    fitted.row(k) << to_centre.x() + q.real(), to_centre.y() + q.imag();
+  }
+  return fitted;
+}
+
+void set_step2_targets(const FeatureSet& features, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& original,
+                       const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& step1, Eigen::VectorXd& b) {
+  const auto& spatial = features.spatial;
+  parallel_for(spatial.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const Feature& f = spatial[k];
+      Eigen::Matrix<double, 3, 2> from, to;
+      from << original.row(f.u), original.row(f.v), original.row(f.w);
+      to << step1.row(f.u), step1.row(f.v), step1.row(f.w);
+      const Eigen::Matrix<double, 3, 2> fitted = fit_without_scale(from, to);
+      const Eigen::RowVector2d vu = fitted.row(1) - fitted.row(0);
+      const Eigen::RowVector2d vw = fitted.row(1) - fitted.row(2);
+      const Eigen::Index row = 4 * static_cast<Eigen::Index>(k);
+      b.segment<4>(row) << vu.x(), vu.y(), vw.x(), vw.y();
+    }
+  });
+}
+
+}  // namespace throng::edit
