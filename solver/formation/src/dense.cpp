@@ -31,6 +31,9 @@ namespace {
 // Columns per block of a product: large enough for BLAS to run at full speed, fixed so that the result does not
 // depend on the thread count.
 constexpr Eigen::Index block_columns = 128;
+// Below about this many floating-point operations a parallel loop costs more than it saves (thread wake-up and
+// barriers, worse when the machine is shared).
+constexpr double parallel_work = 4e6;
 
 // While alive, BLAS/LAPACK calls made by this thread run single-threaded (OpenBLAS's OpenMP build reads the
 // calling thread's omp_get_max_threads(); inside an active parallel region it is single-threaded already).
@@ -80,7 +83,8 @@ void multiply(const Eigen::Ref<const Eigen::MatrixXd>& a, bool transpose_a, cons
   const char tb = 'N';
   const double one = 1.0, zero = 0.0;
   const int mi = to_int(m), ki = to_int(k);
-  for_each(static_cast<std::size_t>(blocks), [&](std::size_t block) {
+  const double block_work = 2.0 * static_cast<double>(m) * static_cast<double>(k) * static_cast<double>(block_columns);
+  for_each(static_cast<std::size_t>(blocks), block_work, [&](std::size_t block) {
     const Eigen::Index first = static_cast<Eigen::Index>(block) * block_columns;
     const int cols = to_int(std::min(block_columns, b.cols() - first));
     SequentialBlas sequential;
@@ -158,9 +162,9 @@ int determinant_sign(const Eigen::Ref<const Eigen::MatrixXd>& a) {
   return sign;
 }
 
-void for_each(std::size_t n, const std::function<void(std::size_t)>& body) {
+void for_each(std::size_t n, double work_per_item, const std::function<void(std::size_t)>& body) {
   if (n == 0) return;
-  if (n == 1 || omp_in_parallel()) {
+  if (n == 1 || omp_in_parallel() || static_cast<double>(n) * work_per_item < parallel_work) {
     for (std::size_t i = 0; i < n; ++i) body(i);
     return;
   }

@@ -35,8 +35,10 @@ void hermitian_eigen(Eigen::MatrixXcd& a, Eigen::VectorXd& values);
 /// 0 if LU finds an exactly zero pivot.
 [[nodiscard]] int determinant_sign(const Eigen::Ref<const Eigen::MatrixXd>& a);
 
-/// Calls body(i) for every i in [0, n) on OpenMP threads (one call per i, dynamic schedule); nested calls run
-/// sequentially. The body must only write state owned by i; BLAS/LAPACK calls inside run single-threaded.
-void for_each(std::size_t n, const std::function<void(std::size_t)>& body);
+/// Calls body(i) for every i in [0, n) on OpenMP threads (one call per i, dynamic schedule); nested calls, and
+/// loops whose total work n · work_per_item (about floating-point operations) is too small to pay for waking
+/// threads, run sequentially. The body must only write state owned by i; BLAS/LAPACK calls inside run
+/// single-threaded.
+void for_each(std::size_t n, double work_per_item, const std::function<void(std::size_t)>& body);
 
 }  // namespace throng::formation::dense

@@ -265,7 +265,10 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
 
   // Analysis of every group (independent: in parallel).
   std::vector<std::unique_ptr<SpectralGroup>> spectral(node_count);
-  dense::for_each(node_count, [&](std::size_t g) { spectral[g] = std::make_unique<SpectralGroup>(groups[g], options); });
+  double analysis_work = 0.0;  // eigenproblems: about 30 m³ per keyframe
+  for (const TreeNode& node : tree.nodes) analysis_work += 30.0 * std::pow(node.item_count(), 3) * static_cast<double>(k_count);
+  dense::for_each(node_count, analysis_work / static_cast<double>(node_count),
+                  [&](std::size_t g) { spectral[g] = std::make_unique<SpectralGroup>(groups[g], options); });
   progress.update(1.0, "formation analysis");
 
   // Frames, from the root down: each group's items give its members' positions and its subgroups' anchors.
@@ -289,7 +292,12 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     std::vector<std::size_t> level;
     for (std::size_t g = 0; g < node_count; ++g)
       if (tree.nodes[g].depth == depth) level.push_back(g);
-    dense::for_each(level.size(), [&](std::size_t li) {
+    double level_work = 0.0;  // products of about 8 m² d flops per frame, plus the coefficients
+    for (std::size_t g : level) {
+      const double m = tree.nodes[g].item_count();
+      level_work += (8.0 * m * m * d + 100.0 * m) * static_cast<double>(frames);
+    }
+    dense::for_each(level.size(), level_work / static_cast<double>(std::max<std::size_t>(level.size(), 1)), [&](std::size_t li) {
       const std::size_t g = level[li];
       const TreeNode& node = tree.nodes[g];
       const Eigen::MatrixXd items = spectral[g]->evaluate(timeline, anchor_paths[g]);

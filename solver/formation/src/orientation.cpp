@@ -67,6 +67,10 @@ std::vector<Eigen::MatrixXd> keyframe_orientations(const std::vector<Eigen::Matr
   Eigen::MatrixXd previous = centred.front();  // body_{k−1}
   for (std::size_t k = 1; k < centred.size(); ++k) {
     const Eigen::MatrixXd& shape = centred[k];
+    if (shape.squaredNorm() == 0.0 || previous.squaredNorm() == 0.0) {  // a single point: no orientation
+      previous = shape;
+      continue;
+    }
     std::vector<Eigen::MatrixXd> candidates;
     if (alignment == OrientationAlignment::pca) candidates = principal_axis_rotations(shape, previous, isotropy_tolerance);
     if (candidates.empty()) candidates.push_back(best_rotation(shape, previous));

@@ -194,7 +194,8 @@ void RotationPower::rotate(Eigen::Ref<Eigen::MatrixXd> w, const std::vector<doub
   const auto groups = static_cast<std::size_t>(w.cols() / group);
   const std::size_t planes = angles_.size();
   constexpr std::size_t groups_per_task = 16;
-  dense::for_each((groups + groups_per_task - 1) / groups_per_task, [&](std::size_t task) {
+  const double task_work = static_cast<double>(groups_per_task * planes) * (40.0 + 6.0 * group);
+  dense::for_each((groups + groups_per_task - 1) / groups_per_task, task_work, [&](std::size_t task) {
     std::vector<double> cosines(planes), sines(planes);
     const std::size_t end = std::min(groups, (task + 1) * groups_per_task);
     for (std::size_t gi = task * groups_per_task; gi < end; ++gi) {

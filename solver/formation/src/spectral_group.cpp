@@ -27,7 +27,8 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
   // Graphs and eigenbases, keyframes in parallel (§3.1).
   graphs_.resize(k_count);
   std::vector<Eigenbasis> eigenbases(k_count);
-  dense::for_each(k_count, [&](std::size_t k) {
+  const double m = items_;
+  dense::for_each(k_count, 10.0 * m * m * m + 2000.0 * m, [&](std::size_t k) {
     const std::string what = keyframes.what + " keyframe " + std::to_string(k);
     Adjacency graph = delaunay_adjacency(keyframes.positions[k], what, keyframes.item_names);
     apply_edits(graph, keyframes.positions[k], keyframes.edits[k], what, keyframes.item_names);
@@ -64,7 +65,7 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
     }
   }
   std::vector<std::optional<RotationPower>> decomposed(pairs.size());
-  dense::for_each(pairs.size(), [&](std::size_t i) {
+  dense::for_each(pairs.size(), 30.0 * m * m * m, [&](std::size_t i) {
     const Eigen::MatrixXd g = dense::multiply(bases_[static_cast<std::size_t>(pairs[i].first)], true,
                                               bases_[static_cast<std::size_t>(pairs[i].second)]);
     decomposed[i].emplace(g);
@@ -128,7 +129,7 @@ Eigen::MatrixXd SpectralGroup::evaluate(const Timeline& timeline, const Eigen::M
       const std::size_t count = std::min(frames_per_chunk, end - chunk);
       std::vector<SplineWeights> weights(count);
       Eigen::MatrixXd c(items_, static_cast<Eigen::Index>(count) * d);
-      dense::for_each(count, [&](std::size_t f) {
+      dense::for_each(count, (dimension_ == 3 ? 200.0 : 60.0) * items_, [&](std::size_t f) {
         weights[f] = catmull_rom_weights(timeline.local[chunk + f], tension_);
         Eigen::MatrixXd local(items_, d);
         coefficients_.evaluate(plan.coefficients, weights[f], local);

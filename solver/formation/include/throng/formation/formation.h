@@ -76,10 +76,10 @@ enum class OrientationAlignment {
 struct CollisionOptions {
   bool enabled = false;
   double min_distance_m = 0.6;               ///< centre-to-centre minimum between any two individuals, every frame
-  double relaxation_time_s = 0.4;            ///< τ of the driving force (v_desired − v)/τ
-  double tracking_time_s = 0.6;              ///< desired velocity = path velocity + (path point − position)/this
-  double repulsion_strength_m_per_s2 = 4.0;  ///< A in A·exp((min_distance − d)/B)
-  double repulsion_range_m = 0.25;           ///< B, the range of the repulsion
+  double relaxation_time_s = 0.3;            ///< τ of the driving force (v_desired − v)/τ
+  double tracking_time_s = 0.3;              ///< desired velocity = path velocity + (path point − position)/this
+  double repulsion_strength_m_per_s2 = 2.0;  ///< A in A·exp((min_distance − d)/B)
+  double repulsion_range_m = 0.2;            ///< B, the range of the repulsion
   double time_step_s = 0.02;                 ///< largest simulation step; frames are sub-stepped to it
   double smoothing_time_s = 0.25;            ///< extent of the temporal smoothing (about the cut-off period)
   int smoothing_passes = 3;                  ///< smoothing/projection alternations after the simulation
@@ -143,7 +143,8 @@ struct Problem {
 struct CollisionReport {
   bool ran = false;
   bool satisfied = true;           ///< every pair at least min_distance apart at every frame (to 1e-6 relative)
-  double closest_m = 0.0;          ///< smallest centre distance found over all frames and pairs
+  double closest_m = 0.0;          ///< smallest centre distance over all frames and pairs, searched up to
+                                   ///< 2 × min_distance (+infinity when no pair is that close)
   std::size_t closest_frame = 0;   ///< where it was found
   Pair closest_pair{0, 0};
   double largest_shift_m = 0.0;    ///< largest distance of a final position from its spectral position
