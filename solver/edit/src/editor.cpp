@@ -238,10 +238,12 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
   s.step1 = step1_objective(s.features, vertices, options.alpha, options.beta);
   s.step1_solver.set_objective(s.step1.A, s.step1.weights);
   s.step1_solver.set_near_null_space(modes, 2);
+  s.step1_solver.set_complex_pairs(true);  // every feature row is complex-linear in (x, y) pairs
   if (options.scale_compensation) {
     s.step2 = step2_objective(s.features, vertices, options.alpha_prime, options.beta_prime);
     s.step2_solver.set_objective(s.step2.A, s.step2.weights);
     s.step2_solver.set_near_null_space(modes, 2);
+    s.step2_solver.set_complex_pairs(true);
   }
   s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
 

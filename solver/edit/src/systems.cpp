@@ -2,6 +2,8 @@
 
 #include <throng/core/parallel.h>
 
+#include <cassert>
+#include <cmath>
 #include <complex>
 #include <vector>
 
@@ -102,7 +104,8 @@ Eigen::Matrix<double, 3, 2> fit_without_scale(const Eigen::Matrix<double, 3, 2>&
     const Complex q(to(k, 0) - to_centre.x(), to(k, 1) - to_centre.y());
     s += std::conj(p) * q;
   }
-  const Complex turn = std::abs(s) > 0 ? s / std::abs(s) : Complex(1, 0);
+  const double length = std::sqrt(std::norm(s));
+  const Complex turn = length > 0 ? s / length : Complex(1, 0);
   Eigen::Matrix<double, 3, 2> fitted;
   for (int k = 0; k < 3; ++k) {
     const Complex p(from(k, 0) - from_centre.x(), from(k, 1) - from_centre.y());
@@ -114,18 +117,33 @@ Eigen::Matrix<double, 3, 2> fit_without_scale(const Eigen::Matrix<double, 3, 2>&
 
 void set_step2_targets(const FeatureSet& features, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& original,
                        const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& step1, Eigen::VectorXd& b) {
+  // One fit per triangle: its three spatial features are consecutive (see FeatureSet).
   const auto& spatial = features.spatial;
-  parallel_for(spatial.size(), 1024, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const Feature& f = spatial[k];
+  assert(spatial.size() % 3 == 0);
+  parallel_for(spatial.size() / 3, 512, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const Feature& corner = spatial[3 * t];
+      const int vertex[3] = {corner.u, corner.v, corner.w};
       Eigen::Matrix<double, 3, 2> from, to;
-      from << original.row(f.u), original.row(f.v), original.row(f.w);
-      to << step1.row(f.u), step1.row(f.v), step1.row(f.w);
+      for (int k = 0; k < 3; ++k) {
+        from.row(k) = original.row(vertex[k]);
+        to.row(k) = step1.row(vertex[k]);
+      }
       const Eigen::Matrix<double, 3, 2> fitted = fit_without_scale(from, to);
-      const Eigen::RowVector2d vu = fitted.row(1) - fitted.row(0);
-      const Eigen::RowVector2d vw = fitted.row(1) - fitted.row(2);
-      const Eigen::Index row = 4 * static_cast<Eigen::Index>(k);
-      b.segment<4>(row) << vu.x(), vu.y(), vw.x(), vw.y();
+      auto fitted_of = [&](int v) -> Eigen::RowVector2d {
+        for (int k = 0; k < 3; ++k) {
+          if (vertex[k] == v) return fitted.row(k);
+        }
+        assert(false && "a spatial feature outside its triangle");
+        return Eigen::RowVector2d::Zero();
+      };
+      for (std::size_t k = 3 * t; k < 3 * t + 3; ++k) {
+        const Feature& f = spatial[k];
+        const Eigen::RowVector2d fv = fitted_of(f.v);
+        const Eigen::RowVector2d vu = fv - fitted_of(f.u);
+        const Eigen::RowVector2d vw = fv - fitted_of(f.w);
+        b.segment<4>(4 * static_cast<Eigen::Index>(k)) << vu.x(), vu.y(), vw.x(), vw.y();
+      }
     }
   });
 }

@@ -89,15 +89,21 @@ struct ConstrainedLeastSquares::State {
   Eigen::MatrixXd Y;
   bool y_cached = true;
 
-  // Near-null-space hint.
+  // Hints for the backend.
   Eigen::MatrixXd modes;
   int block_size = 1;
+  bool complex_pairs = false;
 
   // What is stale. split_stale: Q has new values that Q_FF and Q_FP do not have yet.
   bool q_stale = true;
   bool split_stale = true;
   bool analysis_stale = true;
   bool factor_stale = true;
+
+  // (AᵀW b)_F for the last b: a caller whose b does not change between solves (only pins or d do) skips the
+  // product with A, the largest matrix of the problem.
+  Eigen::MatrixXd last_b;
+  Eigen::MatrixXd last_r;
 
   LeastSquaresReport report;
 
@@ -107,6 +113,7 @@ struct ConstrainedLeastSquares::State {
 
   void invalidate_factor() {
     factor_stale = true;
+    last_b.resize(0, 0);
     invalidate_schur();
   }
   void invalidate_schur() {
@@ -151,23 +158,27 @@ struct ConstrainedLeastSquares::State {
     CT_P = select(CT, pin_slot, static_cast<Index>(pinned.size()), all);
   }
 
-  // The near-null-space modes on the free unknowns, and whether the pins keep whole nodes of block_size.
-  void pass_near_null_space() {
+  // True when the pins take or leave whole nodes of `size` consecutive unknowns.
+  [[nodiscard]] bool pins_keep_nodes(int size) const {
+    if (size <= 1) return true;
+    if (n() % size != 0) return false;
+    for (Index node = 0; node < n() / size; ++node) {
+      const bool first_free = free_position[static_cast<std::size_t>(node * size)] >= 0;
+      for (int k = 1; k < size; ++k) {
+        if ((free_position[static_cast<std::size_t>(node * size + k)] >= 0) != first_free) return false;
+      }
+    }
+    return true;
+  }
+
+  // The backend's hints on the free unknowns: complex pairs, near-null-space modes and their node size.
+  void pass_hints() {
+    backend->set_complex_pairs(complex_pairs && pins_keep_nodes(2));
     if (modes.cols() == 0) {
       backend->set_near_null_space(Eigen::MatrixXd(), 1);
       return;
     }
-    int bs = block_size;
-    if (bs > 1 && n() % bs == 0) {
-      for (Index node = 0; node < n() / bs && bs > 1; ++node) {
-        const bool first_free = free_position[static_cast<std::size_t>(node * bs)] >= 0;
-        for (int k = 1; k < bs; ++k) {
-          if ((free_position[static_cast<std::size_t>(node * bs + k)] >= 0) != first_free) bs = 1;
-        }
-      }
-    } else {
-      bs = 1;
-    }
+    const int bs = pins_keep_nodes(block_size) ? block_size : 1;
     Eigen::MatrixXd restricted(free_count(), modes.cols());
     for (Index i = 0; i < free_count(); ++i) restricted.row(i) = modes.row(free_unknowns[static_cast<std::size_t>(i)]);
     backend->set_near_null_space(restricted, bs);
@@ -353,6 +364,12 @@ void ConstrainedLeastSquares::set_near_null_space(const Eigen::Ref<const Eigen::
   state_->invalidate_factor();
 }
 
+void ConstrainedLeastSquares::set_complex_pairs(bool complex_pairs) {
+  state_->complex_pairs = complex_pairs;
+  state_->analysis_stale = true;
+  state_->invalidate_factor();
+}
+
 void ConstrainedLeastSquares::precompute() {
   State& s = *state_;
   if (s.n() == 0) throw std::invalid_argument("ConstrainedLeastSquares: set_objective() with at least one unknown first");
@@ -373,7 +390,7 @@ void ConstrainedLeastSquares::precompute() {
     s.split_stale = false;
     s.split_constraints();
     if (s.free_count() > 0) {
-      s.pass_near_null_space();
+      s.pass_hints();
       s.backend->analyze(s.Q_FF);
     }
     s.analysis_stale = false;
@@ -421,9 +438,13 @@ Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::Mat
   const Eigen::MatrixXd xp = pin_values.size() > 0 ? Eigen::MatrixXd(pin_values) : Eigen::MatrixXd::Zero(s.pinned.size(), k);
 
   // r = (AᵀW b)_F − Q_FP x_P.
-  const Eigen::MatrixXd AtWb = s.A.transpose() * (s.weights.asDiagonal() * b);
-  Eigen::MatrixXd r(nf, k);
-  for (Index i = 0; i < nf; ++i) r.row(i) = AtWb.row(s.free_unknowns[static_cast<std::size_t>(i)]);
+  if (s.last_b.rows() != b.rows() || s.last_b.cols() != b.cols() || s.last_b != b) {
+    const Eigen::MatrixXd AtWb = s.A.transpose() * (s.weights.asDiagonal() * b);
+    s.last_r.resize(nf, k);
+    for (Index i = 0; i < nf; ++i) s.last_r.row(i) = AtWb.row(s.free_unknowns[static_cast<std::size_t>(i)]);
+    s.last_b = b;
+  }
+  Eigen::MatrixXd r = s.last_r;
   if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
 
   Eigen::MatrixXd xf = nf > 0 ? s.solve_free(r) : Eigen::MatrixXd(0, k);

@@ -8,6 +8,7 @@
 // convergence test on the true (unpreconditioned) residual, block size and near null space from the caller's
 // hint (see bench/linalg for the measurements behind the choice).
 #include "backends.h"
+#include "blas_threads.h"
 #include "petsc_check.h"
 
 #include <throng/core/errors.h>
@@ -116,6 +117,7 @@ class PetscSpdSolver final : public SpdSolver {
 
   void factorize(const SparseMatrix& matrix) override {
     if (matrix_ == nullptr || matrix.rows() != n_) analyze(matrix);
+    const BlasThreadScope threads(options_.blas_threads);
     THRONG_PETSC_CHECK(MatZeroEntries(matrix_));
     std::vector<PetscInt> columns;
     std::vector<PetscScalar> values;
@@ -147,6 +149,7 @@ class PetscSpdSolver final : public SpdSolver {
 
   void solve(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) override {
     assert(ksp_ != nullptr && "factorize() before solve()");
+    const BlasThreadScope threads(options_.blas_threads);
     solve_info_ = {};
     for (Eigen::Index c = 0; c < rhs.cols(); ++c) {
       PetscScalar* local = nullptr;

@@ -48,7 +48,9 @@ struct FeatureOptions {
 };
 
 /// The three feature sets of a graph, measured on its original positions, in a fixed order (by sample, then by
-/// triangle, agent or edge), so the system built from them does not depend on the thread count.
+/// triangle, agent or edge), so the system built from them does not depend on the thread count. Spatial
+/// features come in threes: spatial[3t], [3t + 1], [3t + 2] are the corners (a, b, c), (b, c, a), (c, a, b) of
+/// one triangle.
 struct FeatureSet {
   std::vector<Feature> spatial;
   std::vector<Feature> temporal;

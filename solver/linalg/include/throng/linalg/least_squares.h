@@ -89,6 +89,11 @@ class ConstrainedLeastSquares {
   /// Invalidates the analysis.
   void set_near_null_space(const Eigen::Ref<const Eigen::MatrixXd>& modes, int block_size);
 
+  /// Declares that A acts on interleaved (x, y) pairs of unknowns through complex scalars (every 2×2 block of
+  /// each pair of rows is [[a, −b], [b, a]]), so AᵀWA is complex Hermitian in real form and the backend may
+  /// factor it in complex arithmetic. Kept only when the pins take or leave whole pairs. Invalidates the analysis.
+  void set_complex_pairs(bool complex_pairs);
+
   /// Redoes what the mutators made stale: assemble Q and analyse, factorise, extend the Schur complement.
   /// Throws NumericalError when Q_FF is singular (the pins do not determine x).
   void precompute();

@@ -15,10 +15,11 @@ struct SolverOptions {
   /// "eigen" or "petsc". An unknown name, or a backend this build lacks, is a ConfigError (never a fallback).
   std::string backend = "eigen";
 
-  // --- eigen ---
-  /// BLAS threads inside CHOLMOD's supernodal kernels. 1 by default: on the project's 2-core reference machine
-  /// OpenBLAS (OpenMP build) is slower with 2 threads for every front size CHOLMOD produced here (see
-  /// bench/linalg), and 1 thread keeps the factor's bits independent of --threads. 0 = the process's limit.
+  // --- both ---
+  /// BLAS threads inside the backends (CHOLMOD's supernodal kernels, PETSc's vector and dense kernels). 1 by
+  /// default: on the project's 2-core reference machine OpenBLAS (OpenMP build) with 2 threads was slower for
+  /// every front size CHOLMOD produced and 3× slower in PETSc's Krylov loops (see bench/linalg), and 1 thread
+  /// keeps results independent of --threads. 0 = the process's limit.
   int blas_threads = 1;
 
   // --- petsc (iterative) ---

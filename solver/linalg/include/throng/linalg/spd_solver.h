@@ -81,6 +81,11 @@ class SpdSolver {
     (void)block_size;
   }
 
+  /// A hint given before analyze(): Q is a complex Hermitian matrix written in real form over interleaved
+  /// pairs, Q[2a..2a+1, 2b..2b+1] = [[Re z, −Im z], [Im z, Re z]] (objectives built from rotations and
+  /// scalings of 2-D points, such as the editing features). Backends may then work in complex arithmetic.
+  virtual void set_complex_pairs(bool complex_pairs) { (void)complex_pairs; }
+
   [[nodiscard]] virtual const FactorizationInfo& factorization_info() const = 0;
   [[nodiscard]] virtual const SolveInfo& solve_info() const = 0;
 };
