@@ -85,7 +85,6 @@ SketchScene paper_experiment() {
   scene.options.wide_distance_m = 2.5;
   scene.options.irregularity_max = 0.2;
   scene.options.output_rate_hz = 24.0;
-  scene.options.seed = 2009;
   return scene;
 }
 
@@ -103,18 +102,19 @@ SketchScene large_crowd() {
   auto speed = [](double) { return 1.4; };
   const auto none = [](double) { return 0.0; };
   scene.drawing.strokes.push_back(drawn_stroke(centre, length, 1.0, none, speed));
-  scene.drawing.strokes.push_back(drawn_stroke(
-      centre, length, 1.0, [](double) { return 20.0; }, speed));
-  scene.drawing.strokes.push_back(drawn_stroke(
-      centre, length, 1.0, [](double) { return -20.0; }, speed));
+  // Four auxiliary lines, at ±10 m and ±20 m: the outer pair sets the width, the inner pair spreads the targets
+  // (Eq. 2–4 pull each agent's path toward its nearest strokes).
+  for (const double offset : {20.0, 10.0, -10.0, -20.0}) {
+    scene.drawing.strokes.push_back(drawn_stroke(centre, length, 1.0, [=](double) { return offset; }, speed));
+  }
 
   auto& obstacles = scene.scene.obstacles;
   obstacles.push_back({Circle{{75.0, 8.0}, 1.5}, {}, "pillar north"});
   obstacles.push_back({Circle{{75.0, -10.0}, 1.5}, {}, "pillar south"});
   obstacles.push_back(
-      {ConvexPolygon{{{95.0, -4.0}, {103.0, -4.0}, {104.0, 2.0}, {99.0, 5.0}, {94.0, 2.0}}}, {}, "kiosk"});
-  obstacles.push_back({Wall{{125.0, 7.0}, {125.0, 30.0}, 0.6}, {}, "gate north"});
-  obstacles.push_back({Wall{{125.0, -7.0}, {125.0, -30.0}, 0.6}, {}, "gate south"});
+      {ConvexPolygon{{{95.0, 4.0}, {103.0, 4.0}, {104.0, 10.0}, {99.0, 13.0}, {94.0, 10.0}}}, {}, "kiosk"});
+  obstacles.push_back({Wall{{125.0, 10.0}, {125.0, 30.0}, 0.6}, {}, "gate north"});
+  obstacles.push_back({Wall{{125.0, -10.0}, {125.0, -30.0}, 0.6}, {}, "gate south"});
   // A cart crossing the course from south to north between the pillars and the kiosk.
   Obstacle cart{Circle{{0.0, 0.0}, 1.2}, {{0.0, {85.0, -30.0}, 0.0}, {60.0, {85.0, 30.0}, 0.0}}, "cart"};
   obstacles.push_back(cart);
@@ -123,7 +123,7 @@ SketchScene large_crowd() {
   scene.options.narrow_distance_m = 0.8;
   scene.options.wide_distance_m = 1.2;
   scene.options.output_rate_hz = 10.0;
-  scene.options.seed = 7;
+  scene.options.duration_s = 120.0;  // the crowd has passed the obstacles; the whole crowd arrives in ~8 minutes
   return scene;
 }
 

@@ -43,8 +43,9 @@ inline constexpr double paper_wobbly_from_m = 40.0;
 inline constexpr double paper_fast_from_m = 80.0;
 inline constexpr double paper_length_m = 140.0;
 
-/// A large crowd: 2,000 agents on a 40 m wide, 260 m long course past two pillars (circles), a kiosk (convex
-/// polygon), a gate of two thick walls leaving a 14 m opening, and a cart (a circle) crossing the course.
+/// A large crowd: 2,000 agents on a 40 m wide, 250 m long course past two pillars (circles), a kiosk (convex
+/// polygon), a gate of two thick walls leaving a 20 m opening, and a cart (a circle) crossing the course. Four
+/// auxiliary lines (±10 m, ±20 m). 120 s of crowd time.
 [[nodiscard]] SketchScene large_crowd();
 
 }  // namespace throng::sketch::scenes

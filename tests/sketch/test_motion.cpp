@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 
 #include "scenes.h"
 
@@ -85,16 +86,26 @@ TEST_CASE("the crowd walks slow where the main line was drawn slowly and fast wh
 TEST_CASE("at the end of the path agents stop, or are removed") {
   Options o;
   o.agent_count = 15;
-  SECTION("stop: every agent arrives and stays present near the end") {
+  SECTION("stop: every agent arrives near its end point, or at the crowd standing there, and stays present") {
     const SimulationResult r = simulate(slow_then_fast(), {}, o);
     REQUIRE(r.finished);
     REQUIRE_NOTHROW(r.motion.validate("stop"));
     const std::size_t last = r.motion.frame_count() - 1;
     CHECK(r.motion.times[last] >= *std::max_element(r.arrival_time_s.begin(), r.arrival_time_s.end()));
+    // The standing crowd of n agents covers a disc of radius ρ = √(n s² (√3/2) / π); an agent joins it within
+    // 2 (R + ρ) of its own end point at the latest (sketch.h). n ≤ 15 here.
+    const double s = r.course.standard_distance.back();
+    const double reach = 2 * (o.follow_radius_m + std::sqrt(15 * s * s * std::sqrt(3.0) / 2 / std::numbers::pi));
+    const std::size_t K = r.course.point_count();
     for (std::size_t a = 0; a < 15; ++a) {
-      CHECK(std::isfinite(r.arrival_time_s[a]));
+      REQUIRE(std::isfinite(r.arrival_time_s[a]));
       for (std::size_t f = 0; f <= last; ++f) REQUIRE(r.motion.present(f, a));
-      CHECK(r.motion.position(last, a).x() > 60 - o.follow_radius_m - 3.0);
+      // Position at the first frame at or after its arrival (frames are every step here).
+      const auto f = static_cast<std::size_t>(std::ceil(r.arrival_time_s[a] * o.output_rate_hz - 1e-9));
+      const Vector2d end = target_point(r.course, r.agents, a, K - 1);
+      CHECK((r.motion.position(f, a).head<2>() - end).norm() <= reach + 1e-9);
+      // Standing agents only make room (half an overlap per step): they stay near where they stopped.
+      CHECK((r.motion.position(last, a) - r.motion.position(f, a)).norm() < s);
     }
   }
   SECTION("remove: each agent is present until it arrives and absent afterwards") {

@@ -54,12 +54,13 @@ void ObstacleField::rebuild(const NeighbourGrid& grid, double t0, double t1) {
 }
 
 ObstacleResponse ObstacleField::respond(const Eigen::Vector2d& p, double t, const Eigen::Vector2d& pull,
-                                        const Eigen::Vector2d& heading, std::int8_t side, std::uint32_t agent) const {
+                                        const Eigen::Vector2d& heading, const Eigen::Vector2d& course_point,
+                                        std::int8_t side, std::uint32_t agent) const {
   ObstacleResponse r;
   r.pull = pull;
   double pressing = std::numeric_limits<double>::infinity();
   ObstacleDistance contact;
-  Eigen::Vector2d contact_centre{0, 0};
+  Eigen::AlignedBox2d contact_box;
   for_each_near(p, [&](std::uint32_t o, const Obstacle& obstacle) {
     const ObstacleDistance d = distance_to(obstacle, p, t);
     if (d.signed_distance >= reach_) return;
@@ -67,7 +68,7 @@ ObstacleResponse ObstacleField::respond(const Eigen::Vector2d& p, double t, cons
     if (slide_ && d.normal.dot(pull) < 0 && d.signed_distance < pressing) {
       pressing = d.signed_distance;
       contact = d;
-      contact_centre = boxes_[o].center();
+      contact_box = boxes_[o];
     }
   });
   if (!std::isfinite(pressing)) return r;  // no contact: the side is forgotten
@@ -80,9 +81,15 @@ ObstacleResponse ObstacleField::respond(const Eigen::Vector2d& p, double t, cons
     if (forward < 0) tangent = -tangent;
   } else {
     if (side == 0) {
+      // The course passing beside the obstacle (its main line outside the obstacle's lateral extent) decides;
+      // else the side of the obstacle's centre the agent is on; else the pull's lean; else parity.
+      const Eigen::Vector2d half = 0.5 * contact_box.sizes();
+      const double extent = half.x() * std::abs(left.x()) + half.y() * std::abs(left.y());
+      const double course = left.dot(course_point - contact_box.center());
+      const double offset = left.dot(p - contact_box.center());
       const double lean = pull.dot(left);
-      const double offset = left.dot(p - contact_centre);
-      side = offset != 0 ? (offset > 0 ? 1 : -1) : lean != 0 ? (lean > 0 ? 1 : -1) : (agent % 2 == 0 ? 1 : -1);
+      const double decider = std::abs(course) > extent ? course : offset != 0 ? offset : lean;
+      side = decider != 0 ? (decider > 0 ? 1 : -1) : (agent % 2 == 0 ? 1 : -1);
     }
     if (tangent.dot(left) * side < 0) tangent = -tangent;
   }

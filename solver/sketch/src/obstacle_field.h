@@ -40,12 +40,14 @@ class ObstacleField {
   [[nodiscard]] bool empty() const noexcept { return scene_.obstacles.empty(); }
 
   /// Eq. 18–19 at point p, time t, for a walking agent whose path force is `pull` and whose course direction
-  /// (unit) is `heading`. With sliding, a pull into the most pressing obstacle is turned along its boundary,
-  /// forward along the heading; facing a boundary square-on, the agent keeps `side` (or picks the side of the
-  /// obstacle's centre it is on, so neighbours split the same way and flows round an obstacle never meet; on the
-  /// centre line, the side the pull leans to, else by the parity of `agent`).
+  /// (unit) is `heading` at the main-line point `course_point`. With sliding, a pull into the most pressing
+  /// obstacle is turned along its boundary, forward along the heading; facing a boundary square-on, the agent
+  /// keeps `side`, or picks one: the side the course passes the obstacle on (when its main line runs beside it),
+  /// else the side of the obstacle's centre the agent is on (neighbours split the same way, so the two flows
+  /// never meet), else the side the pull leans to, else by the parity of `agent`.
   [[nodiscard]] ObstacleResponse respond(const Eigen::Vector2d& p, double t, const Eigen::Vector2d& pull,
-                                         const Eigen::Vector2d& heading, std::int8_t side, std::uint32_t agent) const;
+                                         const Eigen::Vector2d& heading, const Eigen::Vector2d& course_point,
+                                         std::int8_t side, std::uint32_t agent) const;
 
   /// Eq. 18–19 alone (no sliding): the push on a standing agent.
   [[nodiscard]] Eigen::Vector2d push(const Eigen::Vector2d& p, double t) const;

@@ -53,6 +53,8 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
   }
   progress.update(1.0, "simulating crowd");
 
+  result.course = sim.course();
+  result.agents = sim.agents();
   result.arrival_time_s.resize(N);
   for (std::size_t j = 0; j < N; ++j) result.arrival_time_s[j] = sim.arrival_time(j);
   result.step_count = sim.step_count();

@@ -124,6 +124,8 @@ struct Simulation::Impl {
   // Σ over agents closer than r to p of (p − p_l)(r/d − 1) (Eq. 16–17 as read); `slot` is the agent's own
   // grid slot (skipped).
   [[nodiscard]] Eigen::Vector2d agent_repulsion(std::size_t slot, const Eigen::Vector2d& p, double r) const;
+  // True when a standing (arrived) agent is closer than r to p (state at the step's start).
+  [[nodiscard]] bool touches_standing(std::size_t slot, const Eigen::Vector2d& p, double r) const;
   // Advances the agents in grid slots [begin, end) from `now` into `next` over [t0, t1]. Writes only those
   // agents' entries of `next` and `arrival`.
   void advance(std::size_t begin, std::size_t end, double t0, double t1, State& next, std::size_t& failures,
@@ -133,13 +135,17 @@ struct Simulation::Impl {
   void rebuild(double t0, double t1);
   // The summary and in_grid of the current state, serially (the constructor; steps gather it as they go).
   void summarise();
-  // Target advancement: while the agent at p is within R of its target or has passed it (is ahead of the line
-  // through the target across the path), the target moves on. True when that happens at the last point.
-  [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k) const {
+  // Target advancement: while the agent at p is within R of its target, has passed it (is ahead of the line
+  // through the target across the path), or the target lies in an obstacle at time t (where no agent can reach
+  // it), the target moves on. True when that happens at the last point.
+  [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k, double t) const {
     const double R2 = options.follow_radius_m * options.follow_radius_m;
     for (;;) {
-      const Eigen::Vector2d d = p - target(j, k);
-      if (d.squaredNorm() > R2 && d.x() * tangent_x[k] + d.y() * tangent_y[k] <= 0) return false;
+      const Eigen::Vector2d goal = target(j, k);
+      const Eigen::Vector2d d = p - goal;
+      const bool reached = d.squaredNorm() <= R2 || d.x() * tangent_x[k] + d.y() * tangent_y[k] > 0 ||
+                           (!obstacles.empty() && obstacles.overlaps(goal, t));
+      if (!reached) return false;
       if (k + 1 == K) return true;
       ++k;
     }
@@ -243,7 +249,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
     if (!obstacles.empty() && !obstacles.keep_clear(p, p, 0.0)) ++unresolved;
     s0.x[j] = p.x();
     s0.y[j] = p.y();
-    if (reach_targets(j, p, s0.k[j])) {
+    if (reach_targets(j, p, s0.k[j], 0.0)) {
       s0.status[j] = arrived;
       arrival[j] = 0.0;
     }
@@ -334,6 +340,25 @@ Eigen::Vector2d Simulation::Impl::agent_repulsion(std::size_t slot, const Eigen:
   return {ax, ay};
 }
 
+bool Simulation::Impl::touches_standing(std::size_t slot, const Eigen::Vector2d& p, double r) const {
+  const State& s = now();
+  const std::uint32_t* order = grid.order().data();
+  const double* sx = grid.sorted_x().data();
+  const double* sy = grid.sorted_y().data();
+  const std::size_t nx = grid.columns(), ny = grid.rows();
+  const std::size_t cx = grid.column(p.x()), cy = grid.row(p.y());
+  const std::size_t c0 = cx > 0 ? cx - 1 : 0, c1 = std::min(cx + 1, nx - 1);
+  for (std::size_t row = cy > 0 ? cy - 1 : 0; row <= std::min(cy + 1, ny - 1); ++row) {
+    const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
+    for (std::uint32_t l = from; l < to; ++l) {
+      if (l == slot || s.status[order[l]] != arrived) continue;
+      const double dx = p.x() - sx[l], dy = p.y() - sy[l];
+      if (dx * dx + dy * dy < r * r) return true;
+    }
+  }
+  return false;
+}
+
 void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, double t1, State& next,
                                std::size_t& failures, Summary& gathered) {
   const State& s = now();
@@ -343,6 +368,10 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   const double dt = options.time_step_s;
   const bool remove_at_end = options.end_of_path == EndOfPath::remove;
   const bool has_obstacles = !obstacles.empty();
+  // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
+  // last standard distance): walking agents that reach it, R beyond, join it (EndOfPath::stop).
+  const double standing_area = static_cast<double>(summary.standing) * standard[K - 1] * standard[K - 1] * 0.8660254;
+  const double end_reach = remove_at_end ? 0.0 : R + std::sqrt(standing_area / std::numbers::pi);
 
   for (std::size_t slot = begin; slot < end; ++slot) {
     const std::uint32_t j = order[slot];
@@ -361,8 +390,8 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       // Eq. 18–19 generalised, with the pull slid along obstacles it points into.
       Eigen::Vector2d block = Eigen::Vector2d::Zero();
       if (has_obstacles && w_block > 0) {
-        const detail::ObstacleResponse r =
-            obstacles.respond(p, t0, pull, Eigen::Vector2d(tangent_x[k], tangent_y[k]), s.side[j], j);
+        const detail::ObstacleResponse r = obstacles.respond(p, t0, pull, Eigen::Vector2d(tangent_x[k], tangent_y[k]),
+                                                             Eigen::Vector2d(main_x[k], main_y[k]), s.side[j], j);
         pull = r.pull;
         block = r.push;
         side = r.side;
@@ -375,7 +404,14 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       if (f > 0) q = p + (speed[k] * dt / f) * force;
       if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
       // Target advancement (after the move, as in the paper; plus "passed", see sketch.h).
-      if (reach_targets(j, q, k)) {
+      // With EndOfPath::stop, an agent also stops on reaching the crowd standing at the end (see sketch.h).
+      bool joins = false;
+      if (end_reach > R) {
+        const double to_end = (target(j, static_cast<std::uint32_t>(K - 1)) - q).norm();
+        joins = to_end <= end_reach || (to_end <= 2 * end_reach && touches_standing(slot, p, avoidance(j, k)));
+      }
+      if (reach_targets(j, q, k, t1) || joins) {
+        k = static_cast<std::uint32_t>(K - 1);
         status = arrived;
         arrival[j] = t1;  // agent j's own entry: no other task writes it
       }

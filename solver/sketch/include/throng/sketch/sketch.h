@@ -32,13 +32,15 @@
 //   Beyond the paper (Options::slide_around_obstacles): Eq. 18's push is radial, so an agent whose path force
 //   points into an obstacle (walking head-on into it, or its target lies inside it) is held in front of it for
 //   good. Then the path force is turned along the boundary of the most pressing obstacle, keeping its length:
-//   forward along the course; facing the boundary square-on (within cos 0.1), round the side of the obstacle's
-//   centre the agent is on (neighbours split the same way, so the two flows never meet; on the centre line the
-//   side the pull leans to, else by agent parity) — and the agent keeps that side from step to step until it
+//   forward along the course; facing the boundary square-on (within cos 0.1), round the side the course passes
+//   the obstacle on when the main line runs beside it (a gate's wall: through the gate), else the side of the
+//   obstacle's centre the agent is on (neighbours split the same way, so the two flows never meet), else the
+//   side the pull leans to, else by agent parity — and the agent keeps that side from step to step until it
 //   loses contact, so it does not dither.
 // - Eq. 21: the paper's per-step v becomes v_k Δt with v_k in m/s, k the agent's current target index (v_0 = v_1).
 // - Target advancement: after the move, while the agent is within R of its target OR has passed it (is ahead of
-//   the line through the target across the main line's direction there), the target moves on — several points
+//   the line through the target across the main line's direction there) OR the target lies inside an obstacle
+//   (grown by the agent radius: no agent can get there), the target moves on — several points
 //   in one step when points are denser than the step. The paper advances only within R; then agents pushed past
 //   their target by the agents behind are pulled back to it and a dense crowd deadlocks (observed on the paper
 //   experiment, which stalled mid-course). Reaching or passing the last point is arrival. The same rule places
@@ -48,11 +50,15 @@
 //   projected out of every obstacle it still overlaps at the step's end time (moving obstacles push agents).
 //   If projections conflict (a gap narrower than the agent) the agent keeps its previous position when that is
 //   clear, else the best position found is kept and counted in SimulationResult::unresolved_obstacle_contacts.
-// - End of path: `stop` — the agent stops walking and stands; standing agents make room: each step they move
-//   by half their summed overlap with agents (Eq. 16 terms) and obstacles (Eq. 18 terms), at most v Δt, so later
-//   arrivals can reach the end (a frozen crowd at the end blocks them forever) and a standing crowd settles
-//   without the jitter of Eq. 21's constant step. `remove` — the agent is present at the step it arrives and
-//   absent (NaN) from the next one.
+// - End of path: `stop` — the agent stops walking and stands. The crowd standing at the end covers about a disc
+//   of radius ρ = √(n s² (√3/2) / π) (n standing agents, s the last standard distance); a walking agent within
+//   R + ρ of its own last target joins it and stands too, and so does one within 2(R + ρ) that touches (comes
+//   within its avoidance distance of) a standing agent. With the paper's rule alone a large crowd never
+//   finishes: late agents push forever into those standing on their end points (2,000 agents still milled round
+//   the end after 600 s). Standing agents make room: each step they move by half their summed overlap with
+//   agents (Eq. 16 terms) and obstacles (Eq. 18 terms), at most v Δt, so a standing crowd settles without the
+//   jitter of Eq. 21's constant step. `remove` — the agent is present at the step it arrives and absent (NaN)
+//   from the next one.
 // - Determinism: every agent reads only the previous state (two buffers); neighbour sums run in a fixed order
 //   (grid cells, then agent index); random draws come from per-agent streams. Same bits for any thread count.
 #pragma once
@@ -265,9 +271,12 @@ class Simulation {
 
 /// What simulate() returns.
 ///   motion          frames at Options::output_rate_hz from time 0; ids 0..N−1, radii agent_radius_m, species 0
+///   course, agents  the parameters the strokes gave (for inspection, pictures and the output file)
 ///   arrival_time_s  #agents, when each agent reached its path's end (NaN: it did not within the duration)
 struct SimulationResult {
   CrowdMotion motion;
+  Course course;
+  AgentParameters agents;
   std::vector<double> arrival_time_s;
   std::size_t step_count = 0;
   std::size_t unresolved_obstacle_contacts = 0;
