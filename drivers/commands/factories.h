@@ -9,6 +9,7 @@ std::unique_ptr<Command> make_import_command();
 std::unique_ptr<Command> make_export_command();
 std::unique_ptr<Command> make_info_command();
 std::unique_ptr<Command> make_plot_command();
+std::unique_ptr<Command> make_sketch_command();
 /// `throng run`: runs the other commands as steps (they must outlive it).
 std::unique_ptr<Command> make_run_command(std::vector<Command*> commands);
 

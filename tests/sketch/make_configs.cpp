@@ -3,8 +3,6 @@
 // "the sketch configs are the test scenes" checks that they still read back to them.
 //
 //   cmake --build build/<dir> --target sketch_make_configs && build/<dir>/tests/sketch/sketch_make_configs configs
-#include "scenes.h"
-
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +11,8 @@
 #include <numbers>
 #include <string>
 #include <variant>
+
+#include "scenes.h"
 
 using namespace throng;
 using namespace throng::sketch;

@@ -64,7 +64,7 @@ TEST_CASE("an agent on a stroke (l = 0) gives that stroke all the weight and fol
   }
 }
 
-TEST_CASE("per-agent draws are in [0.5, 1), fixed per agent and seed, and set the avoidance distance") {
+TEST_CASE("per-agent draws lie between 0.5 and 1, fixed per agent and seed, and set the avoidance distance") {
   Stroke zigzag;
   for (int k = 0; k <= 20; ++k) zigzag.points.emplace_back(k, 2 + 0.5 * (k % 2 == 0 ? 1 : -1));
   const Stroke main = scenes::straight_stroke({0, 0}, {20, 0}, 21, 1.0);

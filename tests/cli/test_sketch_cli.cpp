@@ -1,0 +1,202 @@
+// throng sketch: the stroke-driven crowd job as a user runs it, its job file, and the example configs.
+#include <throng/io/crowd_file.h>
+#include <throng/io/hdf5.h>
+#include <throng/io/sketch_job.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <fstream>
+
+#include "scenes.h"
+#include "test_paths.h"
+
+using namespace throng;
+using Catch::Matchers::Contains;
+
+namespace {
+
+int run(const std::string& args, std::string* out = nullptr) {
+  return test::run_command(test::throng_program().string() + " " + args, out);
+}
+
+std::string config(const std::string& name) { return (test::source_dir() / "configs" / name).string(); }
+
+// A small valid job: a 20 m course, 8 agents, a pillar; `extra` is appended (more keys).
+std::string small_job(const std::string& extra = {}) {
+  return "strokes:\n"
+         "  main: [[0, 0, 0], [10, 0, 8], [20, 0, 16]]\n"
+         "  auxiliary:\n"
+         "    - [[0, 3], [20, 3]]\n"
+         "    - [[0, -3], [20, -3]]\n"
+         "agents: {count: 8}\n"
+         "duration: 6\n"
+         "obstacles:\n"
+         "  - circle: {center: [12, 0], radius: 1}\n" +
+         extra;
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+bool only_inputs_left(const std::filesystem::path& dir) {
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    if (e.path().extension() != ".yaml") return false;
+  }
+  return true;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("the paper experiment config makes a crowd file that reads back with its strokes and parameters") {
+  const auto dir = test::scratch_dir("cli_sketch_paper");
+  const auto out = dir / "paper.h5";
+  std::string report;
+  REQUIRE(run("--quiet --json sketch " + config("sketch-paper.yaml") + " -o " + out.string(), &report) == 0);
+  CHECK_THAT(report, Contains("\"agents\": 50") && Contains("\"arrived\": 50"));
+  const CrowdFile f = read_crowd_file(out);
+  CHECK(f.motion.agent_count() == 50);
+  CHECK(f.motion.frame_count() > 24 * 60);
+  CHECK_NOTHROW(f.motion.validate("paper.h5"));
+  CHECK_THAT(f.provenance.options, Contains("smoothing_window: 5") && Contains("end_of_path: stop"));
+  const h5::File file = h5::File::open(out);
+  const h5::Group sketch = open_throng_parameters(file).open_group("sketch");
+  const auto speed = sketch.open_group("course").read_doubles("speed", 1);
+  const auto main = sketch.open_group("strokes").read_doubles("main", 2);
+  CHECK(speed.shape == std::vector<std::uint64_t>{main.shape[0]});  // one speed per drawn main-line point here
+  CHECK(sketch.open_group("agents").read_doubles("weights", 2).shape == std::vector<std::uint64_t>{50, 3});
+}
+
+TEST_CASE("the sketch configs are the test scenes") {
+  for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
+                                    std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {
+    INFO(file);
+    const SketchJob job = read_sketch_job(ConfigNode::load_file(config(file)));
+    REQUIRE(job.drawing.strokes.size() == scene.drawing.strokes.size());
+    for (std::size_t i = 0; i < job.drawing.strokes.size(); ++i) {
+      CHECK(job.drawing.strokes[i].points == scene.drawing.strokes[i].points);
+      if (i == 0) CHECK(job.drawing.strokes[i].times == scene.drawing.strokes[i].times);
+    }
+    CHECK(job.scene.obstacles.size() == scene.scene.obstacles.size());
+    const sketch::Options& a = job.options;
+    const sketch::Options& b = scene.options;
+    CHECK(a.agent_count == b.agent_count);
+    CHECK(a.narrow_width_m == b.narrow_width_m);
+    CHECK(a.wide_width_m == b.wide_width_m);
+    CHECK(a.narrow_distance_m == b.narrow_distance_m);
+    CHECK(a.wide_distance_m == b.wide_distance_m);
+    CHECK(a.irregularity_max == b.irregularity_max);
+    CHECK(a.output_rate_hz == b.output_rate_hz);
+    CHECK(a.duration_s == b.duration_s);
+    CHECK(a.smoothing_window == b.smoothing_window);
+  }
+}
+
+TEST_CASE("the effective job reads back to the same job") {
+  const SketchJob job =
+      read_sketch_job(ConfigNode::parse(small_job("end_of_path: remove\nweights: {avoid: 1.5}\n"), "job"));
+  const SketchJob again = read_sketch_job(ConfigNode::parse(to_yaml_text(effective_sketch_job(job)), "effective"));
+  CHECK(again.options.end_of_path == sketch::EndOfPath::remove);
+  CHECK(again.options.avoid_weight == 1.5);
+  CHECK(again.options.duration_s == 6);
+  CHECK(again.drawing.strokes[0].points == job.drawing.strokes[0].points);
+  CHECK(again.drawing.strokes[0].times == job.drawing.strokes[0].times);
+  CHECK(again.scene.obstacles.size() == 1);
+}
+
+TEST_CASE("1 thread and 2 threads give identical crowds from the large config") {
+  const auto dir = test::scratch_dir("cli_sketch_threads");
+  const std::string job = config("sketch-large.yaml") + " --set duration=3";
+  REQUIRE(run("--quiet --threads 1 sketch " + job + " -o " + (dir / "one.h5").string()) == 0);
+  REQUIRE(run("--quiet --threads 2 sketch " + job + " -o " + (dir / "two.h5").string()) == 0);
+  const CrowdFile one = read_crowd_file(dir / "one.h5"), two = read_crowd_file(dir / "two.h5");
+  CHECK(one.motion.agent_count() == 2000);
+  CHECK(one.scene.obstacles.size() == 6);
+  CHECK(same_bits(one.motion.positions, two.motion.positions));
+}
+
+TEST_CASE("with --print-config the effective job is printed and nothing is written") {
+  const auto dir = test::scratch_dir("cli_sketch_print");
+  write_file(dir / "job.yaml", small_job());
+  std::string out;
+  REQUIRE(run("sketch " + (dir / "job.yaml").string() + " -o " + (dir / "out.h5").string() + " --print-config", &out) ==
+          0);
+  CHECK_THAT(out,
+             Contains("time_step: 0.04") && Contains("follow_radius: 1") && Contains("main:") && Contains("circle:"));
+  CHECK(only_inputs_left(dir));
+}
+
+TEST_CASE("bad jobs are config errors naming the key and line, and leave no output") {
+  const auto dir = test::scratch_dir("cli_sketch_errors");
+  struct Case {
+    const char* name;
+    std::string job;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {"unknown key", small_job("smoothing_windw: 3\n"), "job.yaml:10:1: unknown key 'smoothing_windw'"},
+      {"out of range", small_job("time_step: -1\n"), "job.yaml:10:12"},
+      {"one point", "strokes: {main: [[0, 0, 0]], auxiliary: [[[0, 1], [5, 1]]]}\n", "the main line has 1 point(s)"},
+      {"time not increasing",
+       "strokes:\n  main: [[0, 0, 0], [5, 0, 2],\n         [9, 0, 2]]\n  auxiliary: [[[0, 1], [9, 1]]]\n",
+       "job.yaml:3:10 (strokes.main[2]): the main line point 2 is drawn at 2 s, not after 2 s"},
+      {"NaN", "strokes:\n  main: [[0, 0, 0], [5, .nan, 2]]\n  auxiliary: [[[0, 1], [9, 1]]]\n",
+       "job.yaml:2:25 (strokes.main[1][1]): expected a finite number"},
+      {"missing times", "strokes:\n  main: [[0, 0], [5, 0]]\n  auxiliary: [[[0, 1], [9, 1]]]\n",
+       "expected 3 numbers, found 2"},
+      {"zero-length stroke", "strokes:\n  main: [[0, 0, 0], [5, 0, 2]]\n  auxiliary: [[[1, 1], [1, 1]]]\n",
+       "stroke 1 (auxiliary line) has zero length"},
+      {"agent in an obstacle",
+       "strokes: {main: [[0, 0, 0], [9, 0, 5]], auxiliary: [[[0, 2], [9, 2]]]}\n"
+       "agents: {positions: [[3, 3], [0, 0.2]]}\n"
+       "obstacles: [{circle: {center: [0, 0], radius: 0.5}, name: post}]\n",
+       "agent 1 starts inside obstacle 0 ('post')"},
+      {"bad end of path", small_job("end_of_path: vanish\n"), "unknown value 'vanish', expected one of: stop, remove"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    write_file(dir / "job.yaml", c.job);
+    std::string out;
+    CHECK(run("--quiet sketch " + (dir / "job.yaml").string() + " -o " + (dir / "out.h5").string(), &out) == 2);
+    CHECK_THAT(out, Contains(c.message));
+    CHECK(only_inputs_left(dir));
+  }
+}
+
+TEST_CASE("a crowd that cannot finish within max_duration is written, and the exit code says so") {
+  const auto dir = test::scratch_dir("cli_sketch_unfinished");
+  const auto out = dir / "short.h5";
+  std::string report;
+  CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set max_duration=5 -o " + out.string(), &report) ==
+        5);
+  CHECK_THAT(report, Contains("had not reached the end of their path"));
+  const CrowdFile f = read_crowd_file(out);
+  CHECK(f.motion.times.back() == Approx(5.0));
+}
+
+TEST_CASE("sketch is a step of throng run: a crowd from strokes, plotted, written") {
+  const auto dir = test::scratch_dir("cli_sketch_run");
+  write_file(dir / "strokes.yaml", small_job());
+  write_file(dir / "pipeline.yaml",
+             "steps:\n"
+             "  - step: sketch\n"
+             "    job: " +
+                 (dir / "strokes.yaml").string() +
+                 "\n"
+                 "    duration: 4\n"
+                 "    output: " +
+                 (dir / "crowd.h5").string() +
+                 "\n"
+                 "  - step: plot\n"
+                 "    output: " +
+                 (dir / "crowd.svg").string() + "\n");
+  REQUIRE(run("--quiet run " + (dir / "pipeline.yaml").string()) == 0);
+  CHECK(std::filesystem::exists(dir / "crowd.svg"));
+  const CrowdFile f = read_crowd_file(dir / "crowd.h5");
+  CHECK(f.motion.agent_count() == 8);
+  CHECK(f.motion.times.back() == Approx(4.0));
+  const h5::File file = h5::File::open(dir / "crowd.h5");
+  CHECK(open_throng_parameters(file).has("sketch"));
+}
