@@ -1,0 +1,106 @@
+// deform_with_features: the Editor's two least-squares steps (systems.h) over caller-made features and pins.
+#include "systems.h"
+
+#include <throng/core/errors.h>
+#include <throng/edit/feature_deformation.h>
+#include <throng/linalg/least_squares.h>
+
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+namespace throng::edit {
+namespace {
+
+using Index = Eigen::Index;
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The similarity modes (translations, rotation, scaling) interleaved x, y: the near-null space of the
+// unconstrained step-1 energy, a hint for multigrid backends (as the Editor gives it).
+Eigen::MatrixXd similarity_modes(const Eigen::Ref<const Positions>& p) {
+  const Eigen::RowVector2d centre = p.rows() > 0 ? Eigen::RowVector2d(p.colwise().mean()) : Eigen::RowVector2d(0, 0);
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
+  for (Index v = 0; v < p.rows(); ++v) {
+    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
+    modes(2 * v, 0) = 1.0;
+    modes(2 * v + 1, 1) = 1.0;
+    modes(2 * v, 2) = -y;
+    modes(2 * v + 1, 2) = x;
+    modes(2 * v, 3) = x;
+    modes(2 * v + 1, 3) = y;
+  }
+  return modes;
+}
+
+Positions as_positions(const Eigen::MatrixXd& x) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
+}
+
+}  // namespace
+
+FeatureDeformation deform_with_features(const FeatureSet& features, const Eigen::Ref<const Positions>& original,
+                                        const std::vector<Index>& pinned, const Eigen::Ref<const Positions>& targets,
+                                        const FeatureWeights& weights, const linalg::SolverOptions& solver) {
+  for (auto [name, value] : {std::pair{"alpha", weights.alpha}, std::pair{"beta", weights.beta},
+                             std::pair{"alpha_prime", weights.alpha_prime}, std::pair{"beta_prime", weights.beta_prime}}) {
+    if (!std::isfinite(value) || value < 0) {
+      throw ConfigError(std::string(name) + " " + std::to_string(value) + ": expected a finite weight ≥ 0");
+    }
+  }
+  if (targets.rows() != static_cast<Index>(pinned.size())) {
+    throw std::invalid_argument("deform_with_features: " + std::to_string(targets.rows()) + " targets for " +
+                                std::to_string(pinned.size()) + " pinned vertices");
+  }
+  const Index vertices = original.rows();
+  FeatureDeformation out;
+  auto start = Clock::now();
+  const Eigen::MatrixXd modes = similarity_modes(original);
+  std::vector<Index> unknowns;
+  unknowns.reserve(2 * pinned.size());
+  Eigen::VectorXd pin_values(static_cast<Index>(2 * pinned.size()));
+  for (std::size_t k = 0; k < pinned.size(); ++k) {
+    unknowns.push_back(2 * pinned[k]);
+    unknowns.push_back(2 * pinned[k] + 1);
+    pin_values[static_cast<Index>(2 * k)] = targets(static_cast<Index>(k), 0);
+    pin_values[static_cast<Index>(2 * k + 1)] = targets(static_cast<Index>(k), 1);
+  }
+  const Eigen::VectorXd no_constraints(0);
+
+  Objective step1 = step1_objective(features, vertices, weights.alpha, weights.beta);
+  Objective step2;
+  if (weights.scale_compensation) step2 = step2_objective(features, vertices, weights.alpha_prime, weights.beta_prime);
+  out.assemble_seconds = seconds_since(start);
+
+  auto setup = [&](linalg::ConstrainedLeastSquares& s, const Objective& o) {
+    s.set_objective(o.A, o.weights);
+    s.set_pinned(unknowns);
+    s.set_near_null_space(modes, 2);
+    s.set_complex_pairs(true);  // every feature row is complex-linear in (x, y) pairs
+  };
+  linalg::ConstrainedLeastSquares solver1(solver), solver2(solver);
+  start = Clock::now();
+  setup(solver1, step1);
+  solver1.precompute();
+  if (weights.scale_compensation) {
+    setup(solver2, step2);
+    solver2.precompute();
+  }
+  out.precompute_seconds = seconds_since(start);
+  out.factorization = solver1.report().factorization.method;
+
+  start = Clock::now();
+  out.step1 = as_positions(solver1.solve(step1.b, pin_values, no_constraints));
+  if (weights.scale_compensation) {
+    set_step2_targets(features, original, out.step1, step2.b);
+    out.positions = as_positions(solver2.solve(step2.b, pin_values, no_constraints));
+  } else {
+    out.positions = out.step1;
+  }
+  out.solve_seconds = seconds_since(start);
+  return out;
+}
+
+}  // namespace throng::edit
