@@ -1,0 +1,127 @@
+// Stitching two group motions in time (Kwon et al. 2008, §5; ../shared/design/METHODS.md §1.1): clip G (t frames)
+// then clip G′ (t′ frames) with the same number of agents become one clip of t + t′ − 1 frames whose formation
+// morphs smoothly across the joint while each trajectory keeps its detail.
+//
+// Method.
+//  1. Correspondence: the minimum-total-distance matching between G's last frame and G′'s first frame (exact:
+//     throng/core/assignment.h, Hungarian / Jonker–Volgenant).
+//  2. Alignment: the rotation and translation (no scale) taking G′'s first frame onto G's last frame in least
+//     squares (Eigen::umeyama without scaling), applied to all of G′.
+//  3. Blending: the stitched graph has the frames of G then G′ from its second frame on; the joint J is G's last
+//     frame. Temporal features are copied from G before J and from G′ after J; at J they are the average of G's
+//     feature at J − 1 and G′'s at J + 1 (the paper's linear interpolation at the midpoint). Spatial and
+//     spatiotemporal features come from the intermediate graph Ḡ (Eq. 11): w(J) averages G's last and G′'s first
+//     frame; before J, w(i) = v(i) + f_a(J − i) (w(J) − v(J)); after J, symmetrically with G′; with
+//     f_a(d) = 1 − 3 (d/W)² + 2 (d/W)³ for d < W and 0 beyond, W the blending window.
+//  4. One solve of the section-1 system (throng/edit/feature_deformation.h: E1, then scale compensation E2 fitting
+//     Ḡ's triangles) with these features.
+//
+// Decisions where the paper is open:
+//  * Window. W counts frames from the joint, per side; 0 (default) means the paper's choice, each clip's own
+//    length: t − 1 frames on G's side and t′ − 1 on G′'s, so that f_a reaches 0 exactly at the clip's outer frame.
+//  * Pins. The system's position, rotation and scale need fixing. Frames where f_a = 0 (outside the window) keep
+//    their aligned input positions: they are pinned, and only the window between them is solved (one pinned
+//    sample of the outside on each side suffices, since features join adjacent samples only). The outer frame of
+//    each clip is always pinned. So stitching leaves the clips' far ends where they were, and a short window costs
+//    a small solve.
+//  * Matching frame. matching = world (default, the paper's): distances between the positions as they are — the
+//    user placed G′ where G should continue. matching = centred: both frames are moved to their centroids first
+//    (translation does not matter; for clips placed anywhere).
+//  * Alignment = rigid (default), translation (no rotation) or none. With one agent, or all of them at one place,
+//    no rotation is determined and none is applied.
+//  * Agents: only those present at every frame of their clip take part (others are left out and listed); both
+//    clips must then have the same number (else InputError). Result agents are G's, with G's ids, radii and species.
+//  * Sampling: every sample_step-th frame, counted from the joint outwards on both sides (so the joint's
+//    neighbouring intervals are regular), plus each clip's outer frame. The output has every source frame: the
+//    samples' solved positions exactly, frames between them the input plus a not-a-knot spline of the
+//    displacement (as the Editor does).
+//  * Times: G's, then G′'s shifted so that its first frame falls on G's last (frame rates may differ; a time warp
+//    or transform resamples afterwards). z is kept from the inputs. Velocities are dropped.
+//  * At the joint, if G (or G′) has fewer than 3 samples it has no temporal feature next to the joint and the other
+//    side's is used; with neither, Ḡ's own.
+#pragma once
+
+#include <throng/core/crowd_motion.h>
+#include <throng/core/progress.h>
+#include <throng/edit/feature_deformation.h>
+#include <throng/graph/features.h>
+#include <throng/graph/motion_graph.h>
+#include <throng/linalg/solver_options.h>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace throng::stitch {
+
+enum class Matching { world, centred };
+enum class Alignment { rigid, translation, none };
+
+struct Options {
+  std::size_t sample_step = 1;   ///< frames between graph samples (≥ 1)
+  std::size_t blend_window = 0;  ///< W in frames from the joint, per side; 0 = each clip's own length (see above)
+  Matching matching = Matching::world;
+  Alignment alignment = Alignment::rigid;
+  FormationOptions formation;    ///< Ḡ's formation edges (long-edge threshold; edits by agent id of G)
+  FeatureOptions features;       ///< weight floor and degenerate-feature rule
+  edit::FeatureWeights weights;  ///< α, β, α′, β′, scale compensation (Eq. 4, 9)
+  linalg::SolverOptions solver;
+};
+
+/// Checks option values; ConfigError naming the option.
+void validate(const Options& options);
+
+/// Points in the plane, one per row (metres).
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+
+/// Step 1: the matching between `last_of_first` (G's last frame) and `first_of_second` (G′'s first frame), same
+/// count n, minimising the summed distance (centred first when matching = centred).
+///   second_of_first  n: the row of first_of_second matched to each row of last_of_first
+struct Correspondence {
+  std::vector<std::size_t> second_of_first;
+  double total_distance = 0;  ///< metres, in the frame the matching used
+};
+[[nodiscard]] Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first,
+                                            const Eigen::Ref<const Points>& first_of_second, Matching matching);
+
+/// Step 2: the rotation and translation (no scale) taking `from` onto `to` (rows correspond) in least squares, or
+/// only the translation (mean difference), or the identity.
+[[nodiscard]] Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<const Points>& to, Alignment alignment);
+
+/// Eq. 11's blending function: 1 − 3 (d/W)² + 2 (d/W)³ for 0 ≤ d < W, 0 for d ≥ W.
+[[nodiscard]] double blend_weight(double distance, double window) noexcept;
+
+struct Report {
+  std::size_t agents = 0;
+  std::size_t frames_first = 0, frames_second = 0, frames = 0;  ///< t, t′, t + t′ − 1
+  std::vector<std::int64_t> left_out_first, left_out_second;     ///< ids absent somewhere in their clip
+  double matching_distance = 0;        ///< metres, summed over agents (in the matching's frame)
+  std::size_t matched_same_id = 0;     ///< agents matched to the agent of G′ with the same id
+  double rotation = 0;                 ///< radians, applied to G′
+  Eigen::Vector2d translation{0, 0};   ///< metres, applied to G′ after the rotation
+  double gap_rms = 0, gap_max = 0;     ///< metres between G's last and aligned G′'s first frame
+  std::size_t window_first = 0, window_second = 0;  ///< W used on each side (frames)
+  std::size_t samples = 0, solved_samples = 0, unknowns = 0;
+  std::size_t spatial_features = 0, temporal_features = 0, spatiotemporal_features = 0;
+  double max_change = 0;               ///< metres: largest move of a vertex from the aligned input
+  std::string factorization;
+  double matching_seconds = 0, graph_seconds = 0, precompute_seconds = 0, solve_seconds = 0;
+};
+
+struct Result {
+  CrowdMotion crowd;                        ///< t + t′ − 1 frames, G's agents
+  std::vector<std::int64_t> second_ids;     ///< per result agent, the id of its matched agent in G′
+  Eigen::Isometry2d alignment = Eigen::Isometry2d::Identity();  ///< applied to G′
+  Report report;
+};
+
+/// Stitches `first` then `second` (see above). Throws InputError for clips with fewer than 2 frames, no agent
+/// present throughout, or different agent counts; ConfigError for bad options; NumericalError when the system is
+/// singular (for example a single agent standing still at both pinned ends).
+[[nodiscard]] Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const Options& options,
+                            Progress* progress = nullptr);
+
+}  // namespace throng::stitch

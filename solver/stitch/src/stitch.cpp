@@ -1,0 +1,365 @@
+#include "text.h"
+
+#include <throng/core/assignment.h>
+#include <throng/core/errors.h>
+#include <throng/core/parallel.h>
+#include <throng/linalg/spd_solver.h>
+#include <throng/stitch/stitch.h>
+#include <throng/timewarp/spline.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace throng::stitch {
+namespace {
+
+using Index = Eigen::Index;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The agents present at every frame of a clip, and the ids of the others.
+struct Presence {
+  std::vector<std::size_t> agents;
+  std::vector<std::int64_t> left_out;
+};
+
+Presence present_throughout(const CrowdMotion& crowd) {
+  Presence p;
+  for (std::size_t a = 0; a < crowd.agent_count(); ++a) {
+    bool all = true;
+    for (std::size_t f = 0; f < crowd.frame_count() && all; ++f) all = crowd.present(f, a);
+    if (all) p.agents.push_back(a);
+    else p.left_out.push_back(crowd.ids[a]);
+  }
+  return p;
+}
+
+// Sample frames of a clip of `frames` frames, every `step` frames counted from the joint: from the last frame
+// backwards for G (joint_is_last), from the first forwards for G′; the outer frame always. Increasing.
+std::vector<std::size_t> samples_from_joint(std::size_t frames, std::size_t step, bool joint_is_last) {
+  std::vector<std::size_t> out;
+  for (std::size_t d = 0; d < frames; d += step) out.push_back(joint_is_last ? frames - 1 - d : d);
+  out.push_back(joint_is_last ? 0 : frames - 1);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+Feature averaged(const Feature& a, const Feature& b) {
+  Feature f = a;
+  f.c = 0.5 * (a.c + b.c);
+  f.offset = 0.5 * (a.offset + b.offset);
+  f.weight = 0.5 * (a.weight + b.weight);
+  return f;
+}
+
+}  // namespace
+
+void validate(const Options& o) {
+  if (o.sample_step == 0) throw ConfigError("sample_step is 0: expected a positive number of frames");
+  if (!(std::isfinite(o.features.min_length) && o.features.min_length > 0)) {
+    throw ConfigError("features.min_length " + detail::number(o.features.min_length) + ": expected a length > 0 in metres");
+  }
+  if (!(o.features.degenerate_ratio >= 0 && o.features.degenerate_ratio < 1)) {
+    throw ConfigError("features.degenerate_ratio " + detail::number(o.features.degenerate_ratio) + ": expected [0, 1)");
+  }
+  for (auto [name, value] : {std::pair{"alpha", o.weights.alpha}, std::pair{"beta", o.weights.beta},
+                             std::pair{"alpha_prime", o.weights.alpha_prime}, std::pair{"beta_prime", o.weights.beta_prime}}) {
+    if (!(std::isfinite(value) && value >= 0)) {
+      throw ConfigError(std::string(name) + " " + detail::number(value) + ": expected a finite weight ≥ 0");
+    }
+  }
+}
+
+double blend_weight(double distance, double window) noexcept {
+  if (!(window > 0) || distance >= window) return 0.0;
+  const double x = std::max(distance, 0.0) / window;
+  return 1.0 - 3.0 * x * x + 2.0 * x * x * x;
+}
+
+Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first, const Eigen::Ref<const Points>& first_of_second,
+                              Matching matching) {
+  const Index n = last_of_first.rows();
+  if (first_of_second.rows() != n) {
+    throw InputError("matching: " + std::to_string(n) + " agents against " + std::to_string(first_of_second.rows()));
+  }
+  Eigen::RowVector2d shift_a(0, 0), shift_b(0, 0);
+  if (matching == Matching::centred && n > 0) {
+    shift_a = last_of_first.colwise().mean();
+    shift_b = first_of_second.colwise().mean();
+  }
+  Eigen::MatrixXd cost(n, n);
+  for (Index i = 0; i < n; ++i) {
+    const Eigen::RowVector2d a = last_of_first.row(i) - shift_a;
+    for (Index k = 0; k < n; ++k) cost(i, k) = (a - (first_of_second.row(k) - shift_b)).norm();
+  }
+  const Assignment assignment = solve_assignment(cost, "stitch matching cost");
+  Correspondence c;
+  c.total_distance = assignment.cost;
+  c.second_of_first.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) c.second_of_first[static_cast<std::size_t>(i)] = static_cast<std::size_t>(assignment.column_of_row[static_cast<std::size_t>(i)]);
+  return c;
+}
+
+Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<const Points>& to, Alignment alignment) {
+  Eigen::Isometry2d m = Eigen::Isometry2d::Identity();
+  if (alignment == Alignment::none || from.rows() == 0) return m;
+  const Eigen::Vector2d from_centre = from.colwise().mean().transpose();
+  const Eigen::Vector2d to_centre = to.colwise().mean().transpose();
+  if (alignment == Alignment::translation) {
+    m.translation() = to_centre - from_centre;
+    return m;
+  }
+  // Eigen::umeyama without scaling: the least-squares rotation + translation (reflections excluded).
+  const Eigen::Matrix3d h = Eigen::umeyama(Eigen::MatrixXd(from.transpose()), Eigen::MatrixXd(to.transpose()), false);
+  m.linear() = h.topLeftCorner<2, 2>();
+  m.translation() = h.topRightCorner<2, 1>();
+  // Points all at one place determine no rotation: umeyama then returns the identity rotation, kept as is.
+  return m;
+}
+
+Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const Options& options, Progress* progress) {
+  validate(options);
+  NoProgress quiet;
+  Progress& report_to = progress ? *progress : quiet;
+  const std::size_t t1 = first.frame_count(), t2 = second.frame_count();
+  if (t1 < 2 || t2 < 2) {
+    throw InputError("stitch: the " + std::string(t1 < 2 ? "first" : "second") + " clip has " + std::to_string(t1 < 2 ? t1 : t2) +
+                     " frame(s); stitching needs at least 2 in each");
+  }
+  Result result;
+  Report& report = result.report;
+  const Presence pa = present_throughout(first), pb = present_throughout(second);
+  report.left_out_first = pa.left_out;
+  report.left_out_second = pb.left_out;
+  if (pa.agents.empty() || pb.agents.empty()) {
+    throw InputError(std::string("stitch: no agent of the ") + (pa.agents.empty() ? "first" : "second") +
+                     " clip is present at all its frames; cut a shorter clip (throng split) first");
+  }
+  if (pa.agents.size() != pb.agents.size()) {
+    throw InputError("stitch: the first clip has " + std::to_string(pa.agents.size()) + " agents present at all its frames, the second " +
+                     std::to_string(pb.agents.size()) + " (left out: first " + detail::id_list(pa.left_out) + "; second " +
+                     detail::id_list(pb.left_out) + "); stitching needs the same number in both");
+  }
+  const std::size_t n = pa.agents.size();
+  const std::size_t J = t1 - 1;            // the joint, as a stitched frame
+  const std::size_t T = t1 + t2 - 1;
+  report.agents = n;
+  report.frames_first = t1;
+  report.frames_second = t2;
+  report.frames = T;
+
+  // 1–2. Correspondence and alignment.
+  report_to.update(0.0, "matching agents");
+  auto start = Clock::now();
+  Points last_a(static_cast<Index>(n), 2), first_b(static_cast<Index>(n), 2);
+  for (std::size_t j = 0; j < n; ++j) {
+    last_a.row(static_cast<Index>(j)) = first.position(J, pa.agents[j]).head<2>().transpose();
+    first_b.row(static_cast<Index>(j)) = second.position(0, pb.agents[j]).head<2>().transpose();
+  }
+  const Correspondence match = match_boundary(last_a, first_b, options.matching);
+  std::vector<std::size_t> partner(n);  // the agent of `second` (index into it) matched to result agent j
+  Points matched_b(static_cast<Index>(n), 2);
+  for (std::size_t j = 0; j < n; ++j) {
+    partner[j] = pb.agents[match.second_of_first[j]];
+    matched_b.row(static_cast<Index>(j)) = first_b.row(static_cast<Index>(match.second_of_first[j]));
+    result.second_ids.push_back(second.ids[partner[j]]);
+    if (second.ids[partner[j]] == first.ids[pa.agents[j]]) ++report.matched_same_id;
+  }
+  report.matching_distance = match.total_distance;
+  result.alignment = align(matched_b, last_a, options.alignment);
+  const Eigen::Isometry2d& M = result.alignment;
+  report.rotation = std::atan2(M.linear()(1, 0), M.linear()(0, 0));
+  report.translation = M.translation();
+  report.matching_seconds = seconds_since(start);
+
+  // Input positions of the stitched clip (G, then aligned G′ from its second frame): the pins and the base of
+  // the output.
+  auto naive = [&](std::size_t F, std::size_t j) -> Eigen::Vector2d {
+    if (F <= J) return first.position(F, pa.agents[j]).head<2>();
+    return M * Eigen::Vector2d(second.position(F - J, partner[j]).head<2>());
+  };
+  auto aligned_second = [&](std::size_t f, std::size_t j) -> Eigen::Vector2d {
+    return M * Eigen::Vector2d(second.position(f, partner[j]).head<2>());
+  };
+  std::vector<Eigen::Vector2d> joint_shift(n);  // D_j = w(J) − v(J) = (G′(0) − G(J)) / 2
+  double gap_sum = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Vector2d gap = aligned_second(0, j) - naive(J, j);
+    joint_shift[j] = 0.5 * gap;
+    gap_sum += gap.squaredNorm();
+    report.gap_max = std::max(report.gap_max, gap.norm());
+  }
+  report.gap_rms = std::sqrt(gap_sum / static_cast<double>(n));
+
+  // Samples of the stitched clip and the window that is solved.
+  report_to.update(0.1, "building the blended graph");
+  start = Clock::now();
+  std::vector<std::size_t> samples = samples_from_joint(t1, options.sample_step, true);
+  const std::size_t joint_sample = samples.size() - 1;
+  for (std::size_t f : samples_from_joint(t2, options.sample_step, false)) {
+    if (f > 0) samples.push_back(J + f);
+  }
+  report.samples = samples.size();
+  const std::size_t W1 = options.blend_window > 0 ? options.blend_window : t1 - 1;
+  const std::size_t W2 = options.blend_window > 0 ? options.blend_window : t2 - 1;
+  report.window_first = W1;
+  report.window_second = W2;
+  auto free_sample = [&](std::size_t g) {
+    const std::size_t F = samples[g];
+    if (F == 0 || F == T - 1) return false;
+    return F <= J ? J - F < W1 : F - J < W2;
+  };
+  std::size_t first_free = joint_sample, last_free = joint_sample;
+  while (first_free > 0 && free_sample(first_free - 1)) --first_free;
+  while (last_free + 1 < samples.size() && free_sample(last_free + 1)) ++last_free;
+  const std::size_t lo = first_free - 1, hi = last_free + 1;  // outer frames are never free: both exist
+  const std::size_t L = hi - lo + 1;
+  report.solved_samples = L;
+  report.unknowns = 2 * L * n;
+
+  std::vector<double> times(T);
+  for (std::size_t F = 0; F < T; ++F) times[F] = F <= J ? first.times[F] : first.times[J] + (second.times[F - J] - second.times[0]);
+
+  // Ḡ (Eq. 11) and the aligned input over the solved samples; vertex l·n + j is agent j at sample lo + l.
+  Clip blended;
+  blended.first_frame = samples[lo];
+  blended.last_frame = samples[hi];
+  blended.frames.assign(samples.begin() + static_cast<std::ptrdiff_t>(lo), samples.begin() + static_cast<std::ptrdiff_t>(hi) + 1);
+  for (std::size_t F : blended.frames) blended.times.push_back(times[F]);
+  for (std::size_t j = 0; j < n; ++j) {
+    blended.agents.push_back(j);
+    blended.ids.push_back(first.ids[pa.agents[j]]);
+  }
+  blended.positions.resize(static_cast<Index>(L * n), 2);
+  Points input(static_cast<Index>(L * n), 2);
+  for (std::size_t l = 0; l < L; ++l) {
+    const std::size_t F = blended.frames[l];
+    for (std::size_t j = 0; j < n; ++j) {
+      const Index v = blended.vertex(l, j);
+      input.row(v) = naive(F, j).transpose();
+      Eigen::Vector2d w;
+      if (F == J) w = naive(J, j) + joint_shift[j];
+      else if (F < J) w = naive(F, j) + blend_weight(static_cast<double>(J - F), static_cast<double>(W1)) * joint_shift[j];
+      else w = naive(F, j) - blend_weight(static_cast<double>(F - J), static_cast<double>(W2)) * joint_shift[j];
+      blended.positions.row(v) = w.transpose();
+    }
+  }
+  const MotionGraph graph = build_motion_graph(blended, options.formation);
+  FeatureSet features = compute_features(graph, options.features);  // spatial and spatiotemporal from Ḡ
+
+  // Temporal features: G's before the joint, G′'s after, their average at the joint.
+  features.temporal.clear();
+  auto position_at = [&](std::size_t g, std::size_t j, bool from_second) -> Eigen::Vector2d {
+    const std::size_t F = samples[g];
+    return from_second ? aligned_second(F - J, j) : naive(F, j);
+  };
+  auto temporal = [&](std::size_t g, std::size_t j, bool from_second, std::size_t at) {
+    // The feature of samples (g − 1, g, g + 1) of one clip, placed on the triple around local sample `at`.
+    const int u = static_cast<int>(blended.vertex(at - 1, j)), v = static_cast<int>(blended.vertex(at, j)),
+              w = static_cast<int>(blended.vertex(at + 1, j));
+    return make_feature(u, v, w, position_at(g - 1, j, from_second), position_at(g, j, from_second),
+                        position_at(g + 1, j, from_second), options.features);
+  };
+  for (std::size_t l = 1; l + 1 < L; ++l) {
+    const std::size_t g = lo + l;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (g != joint_sample) {
+        features.temporal.push_back(temporal(g, j, g > joint_sample, l));
+        continue;
+      }
+      const bool has_first = g >= 2, has_second = g + 2 < samples.size();
+      if (has_first && has_second) {
+        Feature before = temporal(g - 1, j, false, l);  // G's feature at the sample before the joint
+        const Feature after = temporal(g + 1, j, true, l);  // G′'s feature at the sample after the joint
+        features.temporal.push_back(averaged(before, after));
+      } else if (has_first || has_second) {
+        features.temporal.push_back(has_first ? temporal(g - 1, j, false, l) : temporal(g + 1, j, true, l));
+      } else {
+        const int u = static_cast<int>(blended.vertex(l - 1, j)), v = static_cast<int>(blended.vertex(l, j)),
+                  w = static_cast<int>(blended.vertex(l + 1, j));
+        features.temporal.push_back(make_feature(u, v, w, blended.positions.row(u).transpose(), blended.positions.row(v).transpose(),
+                                                 blended.positions.row(w).transpose(), options.features));
+      }
+    }
+  }
+  report.spatial_features = features.spatial.size();
+  report.temporal_features = features.temporal.size();
+  report.spatiotemporal_features = features.spatiotemporal.size();
+
+  // Pins: the two outer samples of the solved window, at their aligned input positions.
+  std::vector<Index> pinned;
+  for (std::size_t j = 0; j < n; ++j) pinned.push_back(blended.vertex(0, j));
+  for (std::size_t j = 0; j < n; ++j) pinned.push_back(blended.vertex(L - 1, j));
+  Points targets(static_cast<Index>(pinned.size()), 2);
+  for (std::size_t k = 0; k < pinned.size(); ++k) targets.row(static_cast<Index>(k)) = input.row(pinned[k]);
+  report.graph_seconds = seconds_since(start);
+
+  // 4. One solve of the section-1 system.
+  report_to.update(0.3, "solving the stitched graph");
+  edit::FeatureDeformation solved;
+  try {
+    solved = edit::deform_with_features(features, blended.positions, pinned, targets, options.weights, options.solver);
+  } catch (const linalg::SingularMatrixError& e) {
+    throw NumericalError(std::string("stitch: the blended system is singular (") + e.what() +
+                         "): the pinned ends leave part of the graph free, for example an agent that stands still at "
+                         "both ends and is joined to no neighbour; shorten the window or raise formation.max_edge_length");
+  }
+  report.factorization = solved.factorization;
+  report.precompute_seconds = solved.precompute_seconds;
+  report.solve_seconds = solved.solve_seconds;
+
+  // The output at every source frame: the input, plus at the window the solved samples and a spline of the
+  // displacement between them.
+  report_to.update(0.9, "resampling");
+  CrowdMotion& out = result.crowd;
+  out = CrowdMotion::with_shape(T, n);
+  out.times = times;
+  for (std::size_t j = 0; j < n; ++j) {
+    out.ids[j] = first.ids[pa.agents[j]];
+    out.radii[j] = first.radii[pa.agents[j]];
+    out.species[j] = first.species[pa.agents[j]];
+  }
+  parallel_for(T, 64, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t F = begin; F < end; ++F) {
+      for (std::size_t j = 0; j < n; ++j) {
+        const double z = F <= J ? first.position(F, pa.agents[j]).z() : second.position(F - J, partner[j]).z();
+        out.position(F, j) << naive(F, j), z;
+      }
+    }
+  });
+  timewarp::RowMatrix displacement(static_cast<Index>(L), static_cast<Index>(2 * n));
+  for (std::size_t l = 0; l < L; ++l) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const Index v = blended.vertex(l, j);
+      displacement.block<1, 2>(static_cast<Index>(l), static_cast<Index>(2 * j)) = solved.positions.row(v) - input.row(v);
+      report.max_change = std::max(report.max_change, (solved.positions.row(v) - input.row(v)).norm());
+    }
+  }
+  const timewarp::CubicSpline spline(blended.times, displacement);
+  const std::size_t first_frame = blended.first_frame, last_frame = blended.last_frame;
+  parallel_for(last_frame - first_frame + 1, 16, [&](std::size_t begin, std::size_t end) {
+    Eigen::RowVectorXd d(static_cast<Index>(2 * n));
+    for (std::size_t F = first_frame + begin; F < first_frame + end; ++F) {
+      const auto at = std::lower_bound(blended.frames.begin(), blended.frames.end(), F);
+      if (*at == F) {
+        const auto l = static_cast<std::size_t>(at - blended.frames.begin());
+        for (std::size_t j = 0; j < n; ++j) out.position(F, j).head<2>() = solved.positions.row(blended.vertex(l, j)).transpose();
+        continue;
+      }
+      spline.evaluate(times[F], 0, d);
+      for (std::size_t j = 0; j < n; ++j) {
+        out.position(F, j).head<2>() += d.segment<2>(static_cast<Index>(2 * j)).transpose();
+      }
+    }
+  });
+  report_to.update(1.0, "stitched");
+  return result;
+}
+
+}  // namespace throng::stitch
