@@ -104,6 +104,8 @@ struct ConstrainedLeastSquares::State {
   // product with A, the largest matrix of the problem.
   Eigen::MatrixXd last_b;
   Eigen::MatrixXd last_r;
+  // The free part of the last solve's first back-substitution: the start of the next one for iterative backends.
+  Eigen::MatrixXd last_x0;
 
   LeastSquaresReport report;
 
@@ -114,6 +116,7 @@ struct ConstrainedLeastSquares::State {
   void invalidate_factor() {
     factor_stale = true;
     last_b.resize(0, 0);
+    last_x0.resize(0, 0);
     invalidate_schur();
   }
   void invalidate_schur() {
@@ -273,6 +276,8 @@ ConstrainedLeastSquares::ConstrainedLeastSquares(const SolverOptions& options)
     : state_(std::make_unique<State>(options)) {}
 
 ConstrainedLeastSquares::~ConstrainedLeastSquares() = default;
+ConstrainedLeastSquares::ConstrainedLeastSquares(ConstrainedLeastSquares&&) noexcept = default;
+ConstrainedLeastSquares& ConstrainedLeastSquares::operator=(ConstrainedLeastSquares&&) noexcept = default;
 
 void ConstrainedLeastSquares::set_objective(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights) {
   State& s = *state_;
@@ -447,7 +452,17 @@ Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::Mat
   Eigen::MatrixXd r = s.last_r;
   if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
 
-  Eigen::MatrixXd xf = nf > 0 ? s.solve_free(r) : Eigen::MatrixXd(0, k);
+  Eigen::MatrixXd xf(nf, k);
+  if (nf > 0) {
+    if (s.last_x0.rows() == nf && s.last_x0.cols() == k) {
+      xf = s.last_x0;
+      s.backend->solve_from(r, xf);
+    } else {
+      s.backend->solve(r, xf);
+    }
+    s.report.last_solve = s.backend->solve_info();
+    s.last_x0 = xf;
+  }
   Eigen::MatrixXd d_unit = Eigen::MatrixXd::Zero(s.m(), k);
   Eigen::MatrixXd g;  // C_F x0 − (d − C_P x_P), the Schur right-hand side
   if (s.m() > 0) {

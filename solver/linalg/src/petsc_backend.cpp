@@ -148,6 +148,18 @@ class PetscSpdSolver final : public SpdSolver {
   }
 
   void solve(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) override {
+    solve_columns(rhs, solution, false);
+  }
+
+  void solve_from(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) override {
+    solve_columns(rhs, solution, true);
+  }
+
+  [[nodiscard]] const FactorizationInfo& factorization_info() const override { return info_; }
+  [[nodiscard]] const SolveInfo& solve_info() const override { return solve_info_; }
+
+ private:
+  void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution, bool from_guess) {
     assert(ksp_ != nullptr && "factorize() before solve()");
     const BlasThreadScope threads(options_.blas_threads);
     solve_info_ = {};
@@ -156,7 +168,14 @@ class PetscSpdSolver final : public SpdSolver {
       THRONG_PETSC_CHECK(VecGetArrayWrite(b_, &local));
       for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = rhs(i, c);
       THRONG_PETSC_CHECK(VecRestoreArrayWrite(b_, &local));
-      THRONG_PETSC_CHECK(VecSet(x_, 0.0));
+      if (from_guess) {
+        THRONG_PETSC_CHECK(VecGetArrayWrite(x_, &local));
+        for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = solution(i, c);
+        THRONG_PETSC_CHECK(VecRestoreArrayWrite(x_, &local));
+      } else {
+        THRONG_PETSC_CHECK(VecSet(x_, 0.0));
+      }
+      THRONG_PETSC_CHECK(KSPSetInitialGuessNonzero(ksp_, from_guess ? PETSC_TRUE : PETSC_FALSE));
       THRONG_PETSC_CHECK(KSPSolve(ksp_, b_, x_));
 
       KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -190,10 +209,6 @@ class PetscSpdSolver final : public SpdSolver {
     }
   }
 
-  [[nodiscard]] const FactorizationInfo& factorization_info() const override { return info_; }
-  [[nodiscard]] const SolveInfo& solve_info() const override { return solve_info_; }
-
- private:
   void attach_near_null_space() {
     if (near_null_.cols() == 0 || near_null_.rows() != n_) return;
     std::vector<Vec> vectors(static_cast<std::size_t>(near_null_.cols()), nullptr);

@@ -64,11 +64,13 @@ struct LeastSquaresReport {
   SolveInfo last_solve;
 };
 
-/// The stateful solver. Not copyable; one instance per problem (per rank when the backend is distributed).
+/// The stateful solver. Movable, not copyable; one instance per problem (per rank when the backend is distributed).
 class ConstrainedLeastSquares {
  public:
   explicit ConstrainedLeastSquares(const SolverOptions& options = {});
   ~ConstrainedLeastSquares();
+  ConstrainedLeastSquares(ConstrainedLeastSquares&&) noexcept;
+  ConstrainedLeastSquares& operator=(ConstrainedLeastSquares&&) noexcept;
   ConstrainedLeastSquares(const ConstrainedLeastSquares&) = delete;
   ConstrainedLeastSquares& operator=(const ConstrainedLeastSquares&) = delete;
 

@@ -72,6 +72,12 @@ class SpdSolver {
   /// iterative backend does not converge.
   virtual void solve(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) = 0;
 
+  /// As solve(), starting iterative backends from the values in `solution` (a previous, nearby solution:
+  /// consecutive drags). Direct backends ignore the start.
+  virtual void solve_from(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) {
+    solve(rhs, solution);
+  }
+
   /// A hint for multigrid backends, given before factorize(): vectors spanning (nearly) the null space of the
   /// operator without its pins, #n by #modes (for example the translations, rotation and scaling of a
   /// formation), and the number of unknowns per node (2 for interleaved x, y; 1 when unknown). Direct backends
