@@ -20,7 +20,7 @@ Request hold_start_and_move_agent(const CrowdMotion& crowd, std::size_t hold_unt
   hold.selection.last_frame = hold_until;
   r.drags.push_back(hold);
   const std::size_t last = crowd.frame_count() - 1;
-  r.pins.push_back({crowd.ids[agent], last, Eigen::Vector2d(crowd.position(last, agent).head<2>() + by)});
+  r.pins.push_back({crowd.ids[agent], static_cast<edit::Frame>(last), Eigen::Vector2d(crowd.position(last, agent).head<2>() + by)});
   return r;
 }
 

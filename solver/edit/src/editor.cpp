@@ -312,7 +312,8 @@ Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const
   Editor editor(crowd, options, request);
   editor.precompute();
   const auto& samples = editor.deform(request);
-  return {editor.resample(samples), editor.report()};
+  const Clip& clip = editor.graph().clip;
+  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
 }
 
 }  // namespace throng::edit

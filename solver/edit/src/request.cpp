@@ -13,7 +13,6 @@ namespace throng::edit {
 namespace {
 
 using Index = Eigen::Index;
-constexpr std::size_t open_end = std::numeric_limits<std::size_t>::max();
 
 std::string clip_range(const Clip& clip) {
   return "[" + std::to_string(clip.first_frame) + ", " + std::to_string(clip.last_frame) + "]";
@@ -40,23 +39,31 @@ std::size_t agent(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, 
                                     " (not among clip.agents, or absent from all of it)"));
 }
 
-void check_frame(const Clip& clip, std::size_t frame, const std::string& where) {
-  if (frame < clip.first_frame || frame > clip.last_frame) {
-    throw ConfigError(where + " " + std::to_string(frame) + " is outside the clip " + clip_range(clip));
+// The input frame a request's frame names (negative: back from the clip's last frame), checked to be in the clip.
+std::size_t absolute_frame(const Clip& clip, Frame frame, const std::string& where) {
+  const long last = static_cast<long>(clip.last_frame);
+  const long f = frame < 0 ? last + 1 + frame : frame;
+  if (f < static_cast<long>(clip.first_frame) || f > last) {
+    throw ConfigError(where + " " + std::to_string(frame) + (frame < 0 ? " (" + std::to_string(f) + ")" : std::string()) +
+                      " is outside the clip " + clip_range(clip));
   }
+  return static_cast<std::size_t>(f);
 }
 
-// The frame range [first, last] clamped to the clip; a ConfigError when it misses the clip.
-std::pair<std::size_t, std::size_t> clamp_range(const Clip& clip, std::size_t first, std::size_t last, const std::string& where) {
-  if (first > last) {
-    throw ConfigError(where + ": first_frame " + std::to_string(first) + " is after last_frame " + std::to_string(last));
+// The frame range [first, last] (negative: from the end) clamped to the clip; a ConfigError when it misses it.
+std::pair<std::size_t, std::size_t> clamp_range(const Clip& clip, Frame first, Frame last, const std::string& where) {
+  const long end = static_cast<long>(clip.last_frame);
+  const long a = first < 0 ? end + 1 + first : first;
+  const long b = last < 0 ? end + 1 + last : last;
+  if (a > b) {
+    throw ConfigError(where + ": first_frame " + std::to_string(first) + " is after last_frame " + std::to_string(last) +
+                      " (in the clip " + clip_range(clip) + ")");
   }
-  if (first > clip.last_frame || last < clip.first_frame) {
-    throw ConfigError(where + ": frames [" + std::to_string(first) + ", " +
-                      (last == open_end ? std::string("end") : std::to_string(last)) + "] are outside the clip " +
+  if (a > end || b < static_cast<long>(clip.first_frame)) {
+    throw ConfigError(where + ": frames [" + std::to_string(first) + ", " + std::to_string(last) + "] are outside the clip " +
                       clip_range(clip));
   }
-  return {std::max(first, clip.first_frame), std::min(last, clip.last_frame)};
+  return {static_cast<std::size_t>(std::max(a, static_cast<long>(clip.first_frame))), static_cast<std::size_t>(b)};
 }
 
 // Samples whose source frame lies in [first, last] (already clamped); a ConfigError when there is none.
@@ -71,11 +78,11 @@ std::vector<std::size_t> samples_in(const Clip& clip, std::size_t first, std::si
   return out;
 }
 
-std::size_t sample_at(const Clip& clip, std::size_t frame, const std::string& where) {
-  check_frame(clip, frame, where);
+std::size_t sample_at(const Clip& clip, Frame given, const std::string& where) {
+  const std::size_t frame = absolute_frame(clip, given, where);
   const long s = clip.sample_of_frame(frame);
   if (s < 0) {
-    throw ConfigError(where + " " + std::to_string(frame) +
+    throw ConfigError(where + " " + std::to_string(given) +
                       " is not a sample of this edit's clip (an editor samples the frames of the request it was "
                       "built with; build a new one)");
   }
@@ -145,8 +152,7 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
     const Pin& p = request.pins[k];
     const std::string where = "pins[" + std::to_string(k) + "]";
     (void)agent(clip, crowd_ids, p.agent, where + ".agent");
-    check_frame(clip, p.frame, where + ".frame");
-    frames.push_back(p.frame);
+    frames.push_back(absolute_frame(clip, p.frame, where + ".frame"));
   }
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& d = request.drags[k];
@@ -163,8 +169,7 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
           using T = std::decay_t<decltype(c)>;
           (void)agent(clip, crowd_ids, c.agent, where + ".agent");
           if constexpr (std::is_same_v<T, Velocity>) {
-            check_frame(clip, c.frame, where + ".frame");
-            const auto [f0, f1] = velocity_frames(clip, c.frame);
+            const auto [f0, f1] = velocity_frames(clip, absolute_frame(clip, c.frame, where + ".frame"));
             frames.push_back(f0);
             frames.push_back(f1);
           } else {
@@ -257,9 +262,9 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
           const std::size_t a = agent(clip, crowd_ids, c.agent, where + ".agent");
           if constexpr (std::is_same_v<T, Velocity>) {
             if (!c.velocity.allFinite()) throw ConfigError(where + ".velocity is not finite");
-            check_frame(clip, c.frame, where + ".frame");
-            const auto [f0, f1] = velocity_frames(clip, c.frame);
-            const std::size_t s0 = sample_at(clip, f0, where + ".frame"), s1 = sample_at(clip, f1, where + ".frame");
+            const auto [f0, f1] = velocity_frames(clip, absolute_frame(clip, c.frame, where + ".frame"));
+            const std::size_t s0 = sample_at(clip, static_cast<Frame>(f0), where + ".frame");
+            const std::size_t s1 = sample_at(clip, static_cast<Frame>(f1), where + ".frame");
             const double dt = clip.times[s1] - clip.times[s0];
             const Index v0 = clip.vertex(s0, a), v1 = clip.vertex(s1, a);
             for (int axis = 0; axis < 2; ++axis) row(k, {{2 * v1 + axis, 1.0}, {2 * v0 + axis, -1.0}}, c.velocity[axis] * dt);

@@ -60,17 +60,21 @@ struct Options {
   linalg::SolverOptions solver;    ///< backend and its settings
 };
 
+/// Frames in a request are input frame indices; a negative frame counts back from the clip's last frame
+/// (−1 is the clip's last frame, −10 the tenth from the end), so a job can name the end of a clip it has not seen.
+using Frame = long;
+
 /// Vertices chosen by agents and frames.
 struct Selection {
   std::vector<std::int64_t> agents;  ///< agent ids; empty = every agent of the clip
-  std::size_t first_frame = 0;       ///< source frame, inclusive (clamped to the clip's first frame)
-  std::size_t last_frame = std::numeric_limits<std::size_t>::max();  ///< source frame, inclusive (default: clip's last)
+  Frame first_frame = 0;             ///< inclusive (clamped to the clip's first frame)
+  Frame last_frame = -1;             ///< inclusive (default: the clip's last frame)
 };
 
 /// Keeps one agent at one frame at `position` (metres; default: where it is in the input).
 struct Pin {
   std::int64_t agent = 0;
-  std::size_t frame = 0;
+  Frame frame = 0;
   std::optional<Eigen::Vector2d> position;
 };
 
@@ -86,23 +90,23 @@ struct Drag {
 struct RelativePosition {
   std::int64_t agent = 0;
   std::int64_t other = 0;
-  std::size_t first_frame = 0;
-  std::size_t last_frame = std::numeric_limits<std::size_t>::max();
+  Frame first_frame = 0;
+  Frame last_frame = -1;
   std::optional<Eigen::Vector2d> offset;
 };
 
 /// The agent's velocity at `frame` (m/s), measured as (p(frame + 1) − p(frame)) / Δt.
 struct Velocity {
   std::int64_t agent = 0;
-  std::size_t frame = 0;
+  Frame frame = 0;
   Eigen::Vector2d velocity{0, 0};
 };
 
 /// The agent stays on the line through `point` along `direction` at every sample of the frame range.
 struct OnLine {
   std::int64_t agent = 0;
-  std::size_t first_frame = 0;
-  std::size_t last_frame = std::numeric_limits<std::size_t>::max();
+  Frame first_frame = 0;
+  Frame last_frame = -1;
   Eigen::Vector2d point{0, 0};
   Eigen::Vector2d direction{1, 0};  ///< any non-zero length
 };
@@ -174,8 +178,11 @@ class Editor {
 
 /// The result of a one-off edit.
 struct Result {
-  CrowdMotion crowd;  ///< the edited clip at the source frame rate
+  CrowdMotion crowd;  ///< the edited clip at the source frame rate: input frames first_frame..last_frame
   Report report;
+  std::size_t first_frame = 0;             ///< the clip's first input frame
+  std::size_t last_frame = 0;              ///< the clip's last input frame
+  std::vector<std::size_t> sample_frames;  ///< the input frames the graph sampled
 };
 
 /// One-off: build, precompute and deform once (what `throng edit` runs).
