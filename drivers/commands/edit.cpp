@@ -1,0 +1,140 @@
+// throng edit CROWD.h5 --job EDIT.yaml -o OUT.h5 [--backend eigen|petsc]: deform a group motion by pinning and
+// dragging agents while keeping its formations and trajectories (group motion editing, solver/edit).
+// The job format is in io/edit/include/throng/io/edit_job.h; docs/commands/edit.md is the README section.
+//
+// Under mpiexec every rank reads the input and builds the problem; the petsc backend shares the solves between
+// the ranks; rank 0 writes the output and prints the report.
+#include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
+#include <throng/io/edit_job.h>
+#include <throng/linalg/mpi.h>
+
+#include <memory>
+#include <sstream>
+
+#include "factories.h"
+
+namespace throng::cli {
+namespace {
+
+/// A finished edit: the crowd to write, its method data and the report.
+struct Edited {
+  CrowdFile crowd;
+  ExtraWriter extra;
+  Report report;
+};
+
+/// The work shared by `throng edit` and the `edit` step of `throng run`.
+Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) {
+  Progress& progress = context.progress();
+  progress.update(0.0, "edit: graph");
+  edit::Editor editor(input.motion, job.options, job.request);
+  progress.update(0.2, "edit: factorise");
+  editor.precompute();
+  progress.update(0.8, "edit: solve");
+  const auto& samples = editor.deform(job.request);
+  progress.update(0.95, "edit: resample");
+  auto result = std::make_shared<edit::Result>();
+  result->crowd = editor.resample(samples);
+  result->report = editor.report();
+  result->first_frame = editor.graph().clip.first_frame;
+  result->last_frame = editor.graph().clip.last_frame;
+  result->sample_frames = editor.graph().clip.frames;
+  progress.update(1.0, "edit: done");
+
+  const edit::Report& r = result->report;
+  if (!r.left_out.empty()) {
+    std::ostringstream ids;
+    for (std::size_t k = 0; k < r.left_out.size() && k < 10; ++k) ids << (k ? ", " : "") << r.left_out[k];
+    context.warn("edit: " + std::to_string(r.left_out.size()) + " agent(s) absent from part of the clip were left out (" +
+                 ids.str() + (r.left_out.size() > 10 ? ", ..." : "") + ")");
+  }
+  if (!r.fallback.empty()) context.warn("edit: " + r.fallback);
+
+  Edited e;
+  e.crowd.motion = result->crowd;
+  e.crowd.scene = input.scene;
+  e.extra = [result](const h5::Group& g) { write_edit_data(g, *result); };
+  e.report["agents"] = result->crowd.agent_count();
+  e.report["frames"] = result->crowd.frame_count();
+  e.report["clip_frames"] = {result->first_frame, result->last_frame};
+  e.report["samples"] = r.samples;
+  e.report["unknowns"] = r.unknowns;
+  e.report["features"] = r.spatial_features + r.temporal_features + r.spatiotemporal_features;
+  e.report["handles"] = r.handles;
+  e.report["constraint_rows"] = r.constraint_rows;
+  e.report["left_out"] = r.left_out.size();
+  e.report["backend"] = job.options.solver.backend;
+  e.report["ranks"] = mpi::size();
+  e.report["factorization"] = r.factorization;
+  e.report["graph_s"] = r.graph_seconds;
+  e.report["precompute_s"] = r.precompute_seconds;
+  e.report["solve_s"] = r.solve_seconds;
+  e.report["max_constraint_residual_m"] = r.max_constraint_residual;
+  return e;
+}
+
+class EditCommand final : public Command {
+ public:
+  std::string name() const override { return "edit"; }
+  std::string summary() const override {
+    return "Deform a group motion by pinning and dragging agents, keeping formations and trajectories";
+  }
+
+  void setup(CLI::App& app) override {
+    app.add_option("crowd", input_, "Crowd file to edit (.h5)")->required();
+    app.add_option("--job", job_path_, "Edit job (.yaml): clip, pins, drags, constraints, weights, solver")->required();
+    app.add_option("-o,--output", output_, "Crowd file to write (.h5): the edited clip")->required();
+    app.add_option("--backend", backend_, "Solver backend, overriding the job's solver.backend")
+        ->check(CLI::IsMember({"eigen", "petsc"}));
+  }
+
+  void run(Context& context) override {
+    const ConfigNode job = context.load_job(job_path_);
+    EditJob parsed = read_edit_job(job);
+    if (!backend_.empty()) parsed.options.solver.backend = backend_;
+    const YAML::Node effective = effective_edit_job(parsed);
+    if (context.print_config_if_asked(effective)) return;
+    check_distinct(input_, output_);
+    check_distinct(job_path_, output_);
+    context.limit_threads();
+
+    const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
+    if (writer && mpi::size() > 1 && parsed.options.solver.backend != "petsc") {
+      context.warn("edit: " + std::to_string(mpi::size()) + " ranks with the " + parsed.options.solver.backend +
+                   " backend: every rank solves the whole problem (--backend petsc shares it)");
+    }
+    const CrowdFile input = read_crowd_file(input_);
+    Edited e = edit_crowd(input, parsed, context);
+    e.crowd.provenance = context.provenance(effective, {input_.string(), job_path_.string()}, {&input.provenance});
+    if (!writer) return;
+    write_crowd_file(output_, e.crowd, e.extra);
+    Report r;
+    r["output"] = output_.string();
+    r.update(e.report);
+    context.print(r);
+  }
+
+  /// As a step: edits the one crowd it reads; the step's keys are the job file's.
+  std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs,
+                                     Context& context) override {
+    const EditJob parsed = read_edit_job(step);
+    if (inputs.size() != 1) step.fail("edit takes one crowd, found " + std::to_string(inputs.size()));
+    Edited e = edit_crowd(*inputs.front(), parsed, context);
+    e.crowd.provenance.credits = inputs.front()->provenance.credits;
+    context.info("edit: " + e.report.dump());
+    return StepResult{std::move(e.crowd), std::move(e.extra)};
+  }
+
+ private:
+  std::filesystem::path input_;
+  std::filesystem::path job_path_;
+  std::filesystem::path output_;
+  std::string backend_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> make_edit_command() { return std::make_unique<EditCommand>(); }
+
+}  // namespace throng::cli

@@ -1,0 +1,75 @@
+// The group motion editing job (`throng edit CROWD.h5 --job EDIT.yaml -o OUT.h5`, or an `edit` step of
+// `throng run`), and the method data it stores in the output under /parameters/throng/edit.
+//
+// Job file (every key optional; defaults shown; agents by id, frames are indices into the input's frames — in
+// pins, drags and constraints a negative frame counts back from the clip's last frame, −1 being the last —
+// lengths in metres, angles in radians, velocities in m/s):
+//
+//   clip:
+//     first_frame: 0
+//     last_frame: end                 # a frame index, or end (the input's last frame)
+//     agents: [3, 5, 8]               # default: every agent present over the whole clip (others are left out)
+//     sample_step: 1                  # sample every so many frames; the clip's last frame is always a sample
+//   formation:
+//     max_edge_length: 0              # Delaunay edges longer than this are dropped (0: keep all)
+//     edits:                          # applied in order, at the samples in their frame range
+//       - {add: [12, 17], frames: [0, 200]}   # add the edge between agents 12 and 17 (frames: default whole clip)
+//       - {remove: [3, 4]}                    # remove the edge between agents 3 and 4
+//   weights: {alpha: 1, beta: 1, alpha_prime: 1, beta_prime: 1}   # α, β of Eq. 4 and α′, β′ of Eq. 9
+//   scale_compensation: true          # step 2 (Eq. 8–10); false keeps step 1's result
+//   features: {min_length: 0.05, degenerate_ratio: 0.001}        # see throng/graph/features.h
+//   solver:
+//     backend: eigen                  # eigen | petsc (the --backend flag overrides)
+//     blas_threads: 1
+//     relative_tolerance: 1e-12       # petsc: ‖Qx − b‖ ≤ tol·‖b‖
+//     max_iterations: 2000            # petsc, per solve
+//     petsc_prefix: throng_           # PETSc options prefix (PETSC_OPTIONS="-throng_ksp_type gmres" ...)
+//     petsc_options: ""               # e.g. "-pc_type hypre", written without the prefix
+//     constraint_tolerance: 1e-8      # a constraint is met when |c·x − d| ≤ tol·(1 + ‖x‖∞)
+//     schur_cache_megabytes: 512
+//   pins:                             # an agent at a frame stays (or is put) somewhere
+//     - {agent: 12, frame: 40}                    # where it is
+//     - {agent: 12, frame: 80, position: [3, 4]}
+//   drags:                            # selected vertices move rigidly: p ↦ pivot + R(rotation)(p − pivot) + offset
+//     - agents: [1, 2, 3]             # default: every agent of the clip
+//       frames: [0, 10]               # default: the whole clip; [-25, end] = the last 25 frames
+//       offset: [5, 0]
+//       rotation: 0.5
+//       pivot: [0, 0]                 # default: the centroid of the selected vertices
+//   constraints:                      # general linear constraints (at the samples in their frame range)
+//     - {type: relative_position, agent: 12, other: 17, frames: [100, 120], offset: [1, 0]}  # default offset: original
+//     - {type: velocity, agent: 12, frame: 50, velocity: [1.2, 0]}    # (p(f+1) − p(f)) / Δt
+//     - {type: on_line, agent: 12, frames: [0, 60], point: [0, 0], direction: [1, 0]}
+//
+// Everything here is job data: a malformed entry is a ConfigError (exit 2) naming the line. Entries that do not
+// fit the input crowd (an unknown agent, an agent absent from part of the clip, a frame out of range) are
+// ConfigErrors from the editor naming pins[k], drags[k], constraints[k] or formation.edits[k]; contradictory
+// constraints and a singular system are NumericalErrors (exit 5). See throng/edit/edit.h for the method.
+#pragma once
+
+#include <throng/edit/edit.h>
+#include <throng/io/config.h>
+#include <throng/io/hdf5.h>
+#include <yaml-cpp/yaml.h>
+
+namespace throng {
+
+/// A parsed edit job: the options and what the user asks for.
+struct EditJob {
+  edit::Options options;
+  edit::Request request;
+};
+
+/// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
+[[nodiscard]] EditJob read_edit_job(const ConfigNode& job);
+
+/// The job with every option at its effective value (for --print-config and the output's provenance).
+[[nodiscard]] YAML::Node effective_edit_job(const EditJob& job);
+
+/// Writes the method data under /parameters/throng/edit:
+///   sample_frames   int64[S]   the input frames the graph sampled (the clip's frames are first..last)
+///   left_out        int64[L]   ids of agents absent from part of the clip (not edited, not in the output)
+///   attributes: first_frame, last_frame (input frames of the clip), factorization (the solver's method)
+void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result);
+
+}  // namespace throng

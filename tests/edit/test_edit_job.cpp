@@ -1,0 +1,94 @@
+// The edit job file: every key read, effective options round-trip, malformed entries are ConfigErrors with the line.
+#include <throng/core/errors.h>
+#include <throng/io/edit_job.h>
+
+#include <catch2/catch.hpp>
+
+using namespace throng;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const char* full_job = R"(
+clip: {first_frame: 5, last_frame: end, agents: [100, 101, 102], sample_step: 3}
+formation:
+  max_edge_length: 4.5
+  edits:
+    - {add: [100, 102], frames: [5, 20]}
+    - {remove: [100, 101]}
+weights: {alpha: 2, beta: 0.5, alpha_prime: 3, beta_prime: 0.25}
+scale_compensation: false
+features: {min_length: 0.1, degenerate_ratio: 0.01}
+solver: {backend: petsc, relative_tolerance: 1e-10, petsc_options: "-pc_type hypre"}
+pins:
+  - {agent: 100, frame: 10}
+  - {agent: 101, frame: -1, position: [3, 4]}
+drags:
+  - {agents: [100], frames: [5, 8], offset: [1, 2], rotation: 0.5, pivot: [0, 0]}
+  - {frames: [-10, end]}
+constraints:
+  - {type: relative_position, agent: 100, other: 101, frames: [6, 9], offset: [1, 0]}
+  - {type: velocity, agent: 102, frame: 12, velocity: [1.5, 0]}
+  - {type: on_line, agent: 100, point: [0, 1], direction: [1, 1]}
+)";
+
+EditJob parse(const std::string& text) { return read_edit_job(ConfigNode::parse(text, "edit.yaml")); }
+
+}  // namespace
+
+TEST_CASE("every key of a full job is read") {
+  const EditJob job = parse(full_job);
+  const edit::Options& o = job.options;
+  CHECK(o.clip.first_frame == 5);
+  CHECK(o.clip.last_frame == std::numeric_limits<std::size_t>::max());
+  CHECK(o.clip.agents == std::vector<std::int64_t>{100, 101, 102});
+  CHECK(o.clip.sample_step == 3);
+  CHECK(o.formation.max_edge_length == 4.5);
+  REQUIRE(o.formation.edits.size() == 2);
+  CHECK(o.formation.edits[0].add);
+  CHECK(o.formation.edits[0].last_frame == 20);
+  CHECK_FALSE(o.formation.edits[1].add);
+  CHECK((o.alpha == 2 && o.beta == 0.5 && o.alpha_prime == 3 && o.beta_prime == 0.25));
+  CHECK_FALSE(o.scale_compensation);
+  CHECK(o.features.min_length == 0.1);
+  CHECK(o.solver.backend == "petsc");
+  CHECK(o.solver.relative_tolerance == 1e-10);
+  CHECK(o.solver.petsc_options == "-pc_type hypre");
+  const edit::Request& r = job.request;
+  REQUIRE(r.pins.size() == 2);
+  CHECK(r.pins[1].frame == -1);
+  CHECK(*r.pins[1].position == Eigen::Vector2d(3, 4));
+  REQUIRE(r.drags.size() == 2);
+  CHECK(r.drags[0].rotation == 0.5);
+  CHECK(r.drags[1].selection.first_frame == -10);
+  CHECK(r.drags[1].selection.last_frame == -1);
+  REQUIRE(r.constraints.size() == 3);
+  CHECK(std::get<edit::Velocity>(r.constraints[1]).velocity == Eigen::Vector2d(1.5, 0));
+  CHECK(std::get<edit::OnLine>(r.constraints[2]).direction == Eigen::Vector2d(1, 1));
+}
+
+TEST_CASE("the effective job reads back to the same job") {
+  const EditJob job = parse(full_job);
+  const std::string text = to_yaml_text(effective_edit_job(job));
+  const EditJob again = parse(text);
+  CHECK(to_yaml_text(effective_edit_job(again)) == text);
+  CHECK_THAT(text, Contains("alpha: 2") && Contains("petsc_options: -pc_type hypre") && Contains("frame: -1"));
+  CHECK(again.request.constraints.size() == 3);
+  CHECK(again.options.formation.edits.size() == 2);
+  // Defaults are written out in full.
+  const std::string defaults = to_yaml_text(effective_edit_job(parse("{}")));
+  CHECK_THAT(defaults, Contains("sample_step: 1") && Contains("backend: eigen") && Contains("last_frame: end"));
+}
+
+TEST_CASE("malformed entries are configuration errors naming the line") {
+  CHECK_THROWS_WITH(parse("weights: {alpha: 1, gamma: 2}\n"), Contains("gamma"));
+  CHECK_THROWS_WITH(parse("constraints:\n  - {type: speed, agent: 1}\n"), Contains("edit.yaml:2") && Contains("unknown constraint type 'speed'"));
+  CHECK_THROWS_WITH(parse("drags:\n  - {frames: [1, 2, 3]}\n"), Contains("expected [first, last]"));
+  CHECK_THROWS_WITH(parse("pins:\n  - {agent: 1}\n"), Contains("frame"));
+  CHECK_THROWS_WITH(parse("clip: {first_frame: -2}\n"), Contains("negative"));
+  CHECK_THROWS_WITH(parse("clip: {first_frame: 5, last_frame: 5}\n"), Contains("must be after first_frame"));
+  CHECK_THROWS_WITH(parse("formation:\n  edits:\n    - {add: [1, 2], remove: [1, 2]}\n"), Contains("exactly one of add"));
+  CHECK_THROWS_WITH(parse("solver: {backend: cuda}\n"), Contains("cuda"));
+  CHECK_THROWS_WITH(parse("weights: {beta: -1}\n"), Contains("out of range"));
+  CHECK_THROWS_AS(parse("drags:\n  - {offset: [1]}\n"), ConfigError);
+}
