@@ -7,6 +7,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -57,6 +59,67 @@ EdgesAndDuplicates delaunay_3d(const Eigen::Ref<const Eigen::MatrixXd>& points) 
   return out;
 }
 
+// Where four or more points lie on one empty circle — rings, grids, the regular formations of mass performances —
+// the triangulation's diagonals are an arbitrary choice that changes when the formation turns, and a turned
+// formation would get a different graph and deform on the way. The Delaunay graph (every pair of points on a
+// common empty circle) is unique: triangles sharing an edge whose four points are cocircular (incircle
+// determinant within 1e-9 of its scale: designed shapes, whose rounding is ~1e-16) are merged into clusters and
+// every pair of points of a cluster is connected.
+std::vector<std::array<int, 2>> cocircular_chords(const Eigen::Ref<const Eigen::MatrixXd>& points,
+                                                  const std::vector<std::array<int, 3>>& triangles) {
+  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][static_cast<std::size_t>(e)], b = triangles[t][static_cast<std::size_t>((e + 1) % 3)];
+      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
+    }
+  std::vector<int> parent(triangles.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int x) {
+    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
+    return x;
+  };
+  bool any = false;
+  for (const auto& [edge, faces] : faces_of_edge) {
+    if (faces.size() != 2) continue;
+    const auto& t = triangles[static_cast<std::size_t>(faces[0])];
+    int opposite = -1;
+    for (int v : triangles[static_cast<std::size_t>(faces[1])])
+      if (v != edge.first && v != edge.second) opposite = v;
+    const Eigen::Vector2d d = points.row(opposite).transpose();
+    Eigen::Matrix3d m;
+    double scale = 0.0, lengths = 1.0;
+    for (int r = 0; r < 3; ++r) {
+      const Eigen::Vector2d v = points.row(t[static_cast<std::size_t>(r)]).transpose() - d;
+      m.row(r) << v.x(), v.y(), v.squaredNorm();
+      lengths *= v.norm();
+      scale += v.norm();
+    }
+    if (std::abs(m.determinant()) <= 1e-9 * lengths * scale) {
+      const int a = root(faces[0]), b = root(faces[1]);
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      any = true;
+    }
+  }
+  std::vector<std::array<int, 2>> chords;
+  if (!any) return chords;
+  std::map<int, std::vector<int>> cluster_vertices;
+  std::map<int, int> cluster_size;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const int r = root(static_cast<int>(t));
+    ++cluster_size[r];
+    for (int v : triangles[t]) cluster_vertices[r].push_back(v);
+  }
+  for (auto& [r, vertices] : cluster_vertices) {
+    if (cluster_size[r] < 2) continue;
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      for (std::size_t j = i + 1; j < vertices.size(); ++j) chords.push_back({vertices[i], vertices[j]});
+  }
+  return chords;
+}
+
 std::string point_text(const Eigen::Ref<const Eigen::MatrixXd>& points, int i) {
   std::ostringstream s;
   s << "(";
@@ -80,6 +143,8 @@ Adjacency delaunay_adjacency(const Eigen::Ref<const Eigen::MatrixXd>& points, co
     Triangulation t = delaunay_2d(points);
     found.edges = std::move(t.edges);
     found.duplicate_of = std::move(t.duplicate_of);
+    if (!t.has_duplicates())
+      for (const auto& chord : cocircular_chords(points, t.triangles)) found.edges.push_back(chord);
   } else {
     found = delaunay_3d(points);
   }

@@ -32,7 +32,9 @@ struct Adjacency {
 };
 
 /// Delaunay graph of `points` (#items by 2 or 3) with weights 1/distance: CGAL's 2-D triangulation (throng::graph)
-/// or 3-D triangulation (lower-dimensional input gives the triangulation of its plane or line).
+/// or 3-D triangulation (lower-dimensional input gives the triangulation of its plane or line). In 2-D, points on
+/// a common empty circle (regular formations) are all connected: the unique Delaunay graph rather than one
+/// arbitrary triangulation of it, so a turned ring or grid keeps its graph.
 /// Throws InputError naming `what` and the two items (through `item_name`) when two points coincide.
 [[nodiscard]] Adjacency delaunay_adjacency(const Eigen::Ref<const Eigen::MatrixXd>& points, const std::string& what,
                                            const std::vector<std::string>& item_names);

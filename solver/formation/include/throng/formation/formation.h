@@ -82,7 +82,7 @@ struct CollisionOptions {
   double repulsion_range_m = 0.2;            ///< B, the range of the repulsion
   double time_step_s = 0.02;                 ///< largest simulation step; frames are sub-stepped to it
   double smoothing_time_s = 0.25;            ///< extent of the temporal smoothing (about the cut-off period)
-  int smoothing_passes = 3;                  ///< smoothing/projection alternations after the simulation
+  int smoothing_passes = 2;                  ///< smoothing/projection alternations after the simulation
   int projection_sweeps = 200;               ///< Gauss–Seidel sweeps per frame to restore the minimum distance
 };
 

@@ -1,0 +1,81 @@
+// Spectral formation control at scale. Targets on the 2-core machine (issue 6): the paper's 1,260-individual
+// hierarchy × 991 frames in ≤ 2 s; a flat 1,000-individual transition × 1,000 frames in ≤ 10 s.
+//
+//   build/<dir>/bench/formation/bench_formation --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <throng/formation/formation.h>
+
+#include <throng/core/parallel.h>
+
+#include "scenes.h"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+using throng::formation::Options;
+
+void run(benchmark::State& state, const throng::formation::Problem& problem, const Options& options) {
+  std::size_t frames = 0;
+  for (auto _ : state) {
+    const auto result = throng::formation::animate_formation(problem, options);
+    frames = result.motion.frame_count();
+    benchmark::DoNotOptimize(result.motion.positions.data());
+  }
+  state.counters["individuals"] = static_cast<double>(problem.keyframes[0].positions.rows());
+  state.counters["frames"] = static_cast<double>(frames);
+}
+
+// Flat transitions (two keyframes, one group) of 60, 250, 1,000 and 2,000 individuals × 1,000 frames; the second
+// argument is the thread count (0 = all).
+void BM_FlatTransition(benchmark::State& state) {
+  const throng::formation::Problem problem = throng::test::flat_transition(static_cast<int>(state.range(0)));
+  const throng::ThreadLimit threads(static_cast<std::size_t>(state.range(1)));
+  run(state, problem, Options{});
+}
+BENCHMARK(BM_FlatTransition)
+    ->ArgNames({"n", "threads"})
+    ->Args({60, 0})
+    ->Args({250, 0})
+    ->Args({1000, 0})
+    ->Args({1000, 1})
+    ->Args({2000, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The paper's Figure 11 crowd: 1,260 = 35 × 6 × 6 in three levels, 4 keyframes, 991 frames.
+void BM_PaperCrowdHierarchy(benchmark::State& state) {
+  const throng::formation::Problem problem = throng::test::paper_crowd();
+  const throng::ThreadLimit threads(static_cast<std::size_t>(state.range(0)));
+  run(state, problem, Options{});
+}
+BENCHMARK(BM_PaperCrowdHierarchy)->ArgName("threads")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same crowd flat (one group of 1,260 over four keyframes): what the hierarchy saves.
+void BM_PaperCrowdFlat(benchmark::State& state) {
+  throng::formation::Problem problem = throng::test::paper_crowd();
+  problem.hierarchy.reset();
+  run(state, problem, Options{});
+}
+BENCHMARK(BM_PaperCrowdFlat)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The hierarchy with collision avoidance (§4.3) at 0.6 m: the spectral paths of these four figures cross a lot.
+void BM_PaperCrowdCollisions(benchmark::State& state) {
+  const throng::formation::Problem problem = throng::test::paper_crowd();
+  Options options;
+  options.collision.enabled = true;
+  options.collision.min_distance_m = 0.6;
+  run(state, problem, options);
+}
+BENCHMARK(BM_PaperCrowdCollisions)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Automatic hierarchy (spectral clustering, groups of ≤ 8) on the 1,260 crowd without its tree.
+void BM_PaperCrowdAutoHierarchy(benchmark::State& state) {
+  throng::formation::Problem problem = throng::test::paper_crowd();
+  problem.hierarchy.reset();
+  Options options;
+  options.auto_group_size = 8;
+  run(state, problem, options);
+}
+BENCHMARK(BM_PaperCrowdAutoHierarchy)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
