@@ -194,6 +194,8 @@ Merged merge(const CrowdMotion& a, const Scene& scene_a, const CrowdMotion& b, c
       }
     }
   };
+  m.first_agents = keep_a;
+  m.second_agents = keep_b;
   place(a, pa, keep_a, 0, true, 0);
   place(b, pb, keep_b, na, false, report.id_shift);
   m.scene = merge_scenes(scene_a, scene_b);

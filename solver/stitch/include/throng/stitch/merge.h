@@ -55,8 +55,11 @@ struct MergeReport {
   bool velocities_dropped = false;
 };
 
+/// The merged crowd: agent j < first_agents.size() is the first crowd's agent first_agents[j], the others are the
+/// second crowd's second_agents[j − first_agents.size()] (indices into the inputs).
 struct Merged {
   CrowdMotion crowd;
+  std::vector<std::size_t> first_agents, second_agents;
   Scene scene;
   std::vector<std::array<std::int32_t, 2>> formation_edges;  ///< agent index pairs (i < j), sorted
   MergeReport report;
