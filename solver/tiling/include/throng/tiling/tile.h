@@ -1,0 +1,91 @@
+// The tiler: fills a space-time region with deformable motion patches so that no entry or exit is left
+// dangling (seed 004 §5, METHODS.md §4).
+//
+//   tile()  validates the library, keyframes and options; finds the patch types that can ever be used inside
+//           the region (pose classes that no end of the opposite kind ever has make a type unusable: when none
+//           is usable, a NumericalError says why, before any search); precomputes each type's deformation
+//           system; then runs `chains` independent chains (threads × MPI ranks), each:
+//             keyframes → phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2),
+//           and keeps the best chain (options.h: Options::chains). Every rank returns the same tiling.
+//
+// Decisions where the paper is unclear (see also options.h, deformation.h):
+// - Algorithm 1 as printed (METHODS.md): i is reset on acceptance; T falls by ΔT at every proposal and stops at
+//   0, after which only proposals that do not raise E_tiling are accepted. ΔE is computed on the stitched and
+//   deformed tiling, before the validity test. N_c and N_d count ends (a connection is two connected ends);
+//   ends that need no partner (tiling.h) count in neither.
+// - A proposal is stitched to existing dangling ends of the opposite kind and the same pose class within the
+//   match thresholds, each new end to at most one, greedily by normalised distance (ties: lowest instance,
+//   fragment). Keyframes are placed first, never stitched to each other, never deformed or removed.
+// - Phase 2 visits dangling ends in time order (then instance, fragment, entry before exit), places each
+//   candidate so that its matching end lands exactly on the dangling end, tries it unjittered and then jittered
+//   (the jitter range grows with the attempt), and requires every attempt not to raise the dangling count.
+//   History: a removed instance's (type, fragment, anchor end) is never proposed again at that end.
+// - Validity: no two character or prop capsules of different instances closer than the sum of their radii at
+//   any time (exact closest approach of the linearly interpolated paths, continuous in time), except the two
+//   fragments a connection joins (the same character); no capsule closer to an obstacle than its radius at the
+//   sampled points (Options::obstacle_step_m); deformation within the limits; times strictly increasing.
+// - Periodic axes: every distance, match and collision uses the nearest image; instance translations and time
+//   shifts are kept inside the tile.
+#pragma once
+
+#include <throng/core/progress.h>
+#include <throng/tiling/options.h>
+#include <throng/tiling/patch.h>
+#include <throng/tiling/tiling.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace throng::tiling {
+
+/// A user-placed instance (§6 "Keyframing"): part of the initial tiling, kept as placed.
+struct Keyframe {
+  std::size_t type = 0;
+  Transform transform;
+};
+
+/// What a chain did.
+struct ChainReport {
+  std::size_t chain = 0;
+  std::size_t dangling = 0;
+  std::size_t instances = 0;
+  std::size_t characters = 0;
+  double mean_preference_cost = 0;  ///< mean over instances of Σ f_i / σ_i (lower is better)
+  std::size_t proposals = 0;        ///< phase 1
+  std::size_t accepted = 0;         ///< phase 1
+  std::size_t phase1_instances = 0;
+  std::size_t phase1_dangling = 0;
+  std::size_t search_steps = 0;     ///< phase 2 candidate placements tried
+  std::size_t removals = 0;         ///< phase 2
+  double phase1_seconds = 0;
+  double phase2_seconds = 0;
+  bool search_capped = false;       ///< phase 2 stopped at SearchOptions::max_steps
+};
+
+struct TilingReport {
+  std::vector<ChainReport> chains;  ///< every chain, by chain index
+  std::size_t best_chain = 0;
+  std::size_t dangling = 0;         ///< of the kept tiling: 0 means perfect
+  std::size_t instances = 0;
+  std::size_t characters = 0;
+  std::size_t connections = 0;
+  std::vector<std::size_t> unusable_types;  ///< types left out (an end nothing can ever match)
+  double seconds = 0;               ///< wall time of tile() on this rank
+  [[nodiscard]] bool perfect() const noexcept { return dangling == 0; }
+};
+
+struct TilingResult {
+  Tiling tiling;
+  TilingReport report;
+};
+
+/// Tiles `environment.scene.region` with instances of `library` (see the file comment). Throws ConfigError
+/// (bad options, no region, a keyframe naming no type or colliding), InputError (an invalid library), and
+/// NumericalError when no patch type can ever be placed without leaving a dangling end. An imperfect result
+/// (caps reached) is returned, not thrown: report.perfect() says. Progress is reported from the calling thread.
+/// MPI: when launched by mpiexec, every rank must call tile() with the same arguments.
+[[nodiscard]] TilingResult tile(const PatchLibrary& library, const Environment& environment,
+                                const std::vector<Keyframe>& keyframes, const Options& options, Progress& progress);
+
+}  // namespace throng::tiling

@@ -1,0 +1,54 @@
+#include "phases.h"
+
+#include <chrono>
+
+namespace throng::tiling {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain, const Tick& tick) {
+  ChainResult out;
+  ChainReport& report = out.report;
+  report.chain = chain;
+  Rng rng(derive_seed(problem.options.seed, chain));
+  TilingState state(problem);
+  Stitcher stitcher(state);
+  const PreferenceModel preference(problem);
+
+  for (const Keyframe& k : keyframes) {
+    Change c;
+    c.type = static_cast<std::uint32_t>(k.type);
+    c.transform = k.transform;
+    canonicalise(problem, c.transform);
+    c.keyframed = true;
+    c.paths = place(problem.library.types[k.type], c.transform);
+    state.apply(c);
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  anneal(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 * f); });
+  report.phase1_seconds = seconds_since(start);
+  report.phase1_instances = state.instances();
+  report.phase1_dangling = state.dangling();
+
+  const auto start2 = std::chrono::steady_clock::now();
+  search(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 + 0.5 * f); });
+  report.phase2_seconds = seconds_since(start2);
+
+  out.tiling = state.snapshot();
+  report.dangling = state.dangling();
+  report.instances = state.instances();
+  report.characters = state.characters();
+  double cost = 0;
+  for (const Instance& inst : out.tiling.instances) cost += preference.cost(static_cast<std::uint32_t>(inst.type), inst.transform);
+  report.mean_preference_cost = out.tiling.instances.empty() ? 0.0 : cost / static_cast<double>(out.tiling.instances.size());
+  if (tick) tick(1.0);
+  return out;
+}
+
+}  // namespace throng::tiling

@@ -1,0 +1,60 @@
+// The index of dangling ends: which entries (or exits) of the tiling a new exit (or entry) could be stitched to.
+// A grid over (x, y, t) of end points, kept up to date as ends become dangling or connected.
+#pragma once
+
+#include <throng/tiling/options.h>
+#include <throng/tiling/tiling.h>
+
+#include "geometry.h"
+#include "grid.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace throng::tiling {
+
+/// A character end in world coordinates.
+struct EndPoint {
+  Eigen::Vector2d position{0, 0};
+  double heading = 0;
+  double time = 0;
+  std::size_t pose_class = 0;
+};
+
+/// A dangling end that matches a query, with its offset to the query: image (periods) such that
+/// query ≈ end + image ⊙ period, and the normalised distance used to rank matches.
+struct EndMatch {
+  FragmentRef end;
+  std::array<int, 3> image{0, 0, 0};
+  double score = 0;  ///< (d/d_max)² + (Δθ/θ_max)² + (Δt/t_max)²
+};
+
+class EndIndex {
+ public:
+  EndIndex(const Region& region, const MatchThresholds& match);
+
+  /// Adds or removes a dangling end (is_exit says which side of the fragment).
+  void insert(FragmentRef ref, bool is_exit, const EndPoint& end);
+  void remove(FragmentRef ref, bool is_exit, const EndPoint& end);
+
+  /// Dangling ends of the opposite side (`want_exits`) that match `query` (same pose class, within the
+  /// thresholds on the nearest image), appended to `out` in no particular order.
+  void matches(const EndPoint& query, bool want_exits, std::vector<EndMatch>& out) const;
+
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+
+ private:
+  struct Entry {
+    EndPoint end;
+    FragmentRef ref;
+  };
+  std::vector<Entry>& cell_of(bool is_exit, const EndPoint& e);
+
+  Grid3 grid_;
+  Periods periods_;
+  MatchThresholds match_;
+  std::vector<std::vector<Entry>> entries_, exits_;
+  std::size_t size_ = 0;
+};
+
+}  // namespace throng::tiling

@@ -1,0 +1,38 @@
+// The two phases of the tiling algorithm (§5) and one chain that runs them.
+#pragma once
+
+#include <throng/core/random.h>
+#include <throng/tiling/tile.h>
+
+#include "preference.h"
+#include "state.h"
+#include "stitcher.h"
+
+#include <functional>
+
+namespace throng::tiling {
+
+/// Called now and then with the chain's own progress in [0, 1].
+using Tick = std::function<void(double)>;
+
+/// Phase 1, Algorithm 1: stochastic sampling by simulated annealing with E_tiling (Eq. 6).
+void anneal(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng, ChainReport& report,
+            const Tick& tick);
+
+/// Phase 2, Algorithm 2: deterministic search with jittering and removal, until no end dangles or the cap.
+void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng, ChainReport& report,
+            const Tick& tick);
+
+/// Moves a transform by whole periods into the tile on the periodic axes; returns the periods subtracted.
+std::array<int, 3> canonicalise(const Problem& problem, Transform& transform);
+
+struct ChainResult {
+  Tiling tiling;
+  ChainReport report;
+};
+
+/// One chain: keyframes, phase 1, phase 2, from Rng(derive_seed(seed, chain)).
+[[nodiscard]] ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain,
+                                    const Tick& tick);
+
+}  // namespace throng::tiling

@@ -1,0 +1,49 @@
+#include "problem.h"
+
+#include <throng/core/parallel.h>
+
+#include "viability.h"
+
+#include <algorithm>
+#include <optional>
+
+namespace throng::tiling {
+
+Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options& opts)
+    : library(lib), environment(env), options(opts), region(*env.scene.region) {
+  const Eigen::Vector3d p = tiling::periods(region);
+  periods.p = {p.x(), p.y(), p.z()};
+
+  // Deformation systems, one per type (independent: built in parallel, each the same whatever the threads).
+  std::vector<std::optional<PatchSystem>> built(library.types.size());
+  parallel_for(library.types.size(), 1, [&](std::size_t a, std::size_t b) {
+    for (std::size_t k = a; k < b; ++k) built[k].emplace(library.types[k], options.deformation);
+  });
+  systems.reserve(built.size());
+  for (auto& s : built) systems.push_back(std::move(*s));
+
+  const Viability v = find_usable_types(library);
+  usable = v.usable;
+  for (std::size_t k = 0; k < usable.size(); ++k) {
+    if (usable[k]) usable_types.push_back(k);
+  }
+  for (const PatchType& type : library.types) {
+    for (const Fragment& f : type.fragments) {
+      for (const Eigen::Vector2d& q : f.positions) max_extent_m = std::max(max_extent_m, q.norm() + f.radius_m);
+    }
+    max_half_duration_s = std::max(max_half_duration_s, 0.5 * (type.end_time() - type.start_time()));
+  }
+  const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
+  for (const Obstacle& o : environment.scene.obstacles) {
+    obstacle_bounds.push_back(bounds_over(o, region.t0 - margin_s, region.t1 + margin_s));
+  }
+}
+
+EndPoint Problem::end_point(std::size_t type, const std::vector<Path>& paths, std::size_t f, bool is_exit) const {
+  const Path& p = paths[f];
+  const std::size_t s = is_exit ? p.times.size() - 1 : 0;
+  const Fragment& fr = library.types[type].fragments[f];
+  return {p.positions[s], p.headings[s], p.times[s], is_exit ? fr.exit_class : fr.entry_class};
+}
+
+}  // namespace throng::tiling

@@ -1,0 +1,15 @@
+// The tiler's test of the per-frame deformation limits (options.h: DeformationLimits). The checker measures
+// the same quantities with its own code (check.cpp).
+#pragma once
+
+#include <throng/tiling/options.h>
+#include <throng/tiling/patch.h>
+#include <throng/tiling/tiling.h>
+
+namespace throng::tiling {
+
+/// True when `path` (a deformation of `fragment`) keeps times strictly increasing and every stretch, bend and
+/// time shift within `limits`.
+[[nodiscard]] bool within_limits(const Fragment& fragment, const Path& path, const DeformationLimits& limits) noexcept;
+
+}  // namespace throng::tiling
