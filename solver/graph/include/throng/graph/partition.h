@@ -1,0 +1,82 @@
+// Partitioning the space-time graph into parts (METIS k-way), as plain data other code builds on: local edits
+// solve only the parts an edit reaches (throng/edit/local_edit.h), distributed solves give parts to ranks.
+//
+// The graph is undirected and given in CSR form (METIS's xadj/adjncy). For a motion graph its vertices are the
+// graph's vertices (agent j at sample i = row i·#agents + j) and its edges the formation edges of every sample
+// plus the motion edges (i, j)–(i + 1, j) (space_time_adjacency).
+//
+// Decisions:
+//  * METIS_PartGraphKway with a fixed seed (PartitionOptions::seed) and 1 thread: the same graph and options give
+//    the same parts on every run and thread count. One part, or a graph with no vertex, needs no METIS call.
+//  * METIS may leave a part empty (a disconnected graph, more parts than the graph can balance); empty parts
+//    are dropped and the rest renumbered in order of their smallest vertex, so every part has a vertex and
+//    part numbers do not depend on METIS's labels. part_count() can therefore be below the requested count.
+//  * Boundary of a part: its vertices with a neighbour in another part. Adjacent parts: parts joined by an edge.
+#pragma once
+
+#include <throng/graph/motion_graph.h>
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace throng {
+
+/// An undirected graph in compressed sparse rows: the neighbours of v are neighbours[offsets[v] ..
+/// offsets[v + 1]), increasing, no self loops, every edge listed from both ends.
+///   offsets     #vertices + 1;   neighbours  2·#edges
+struct AdjacencyGraph {
+  std::vector<int> offsets{0};
+  std::vector<int> neighbours;
+
+  [[nodiscard]] std::size_t vertex_count() const noexcept { return offsets.size() - 1; }
+  [[nodiscard]] std::size_t edge_count() const noexcept { return neighbours.size() / 2; }
+  [[nodiscard]] std::span<const int> neighbours_of(std::size_t v) const noexcept {
+    return {neighbours.data() + offsets[v], neighbours.data() + offsets[v + 1]};
+  }
+};
+
+/// The graph of `vertex_count` vertices with the given edges (either order; duplicates and self loops are
+/// dropped). Throws std::invalid_argument for a vertex index outside [0, vertex_count).
+[[nodiscard]] AdjacencyGraph adjacency_from_edges(std::size_t vertex_count, std::span<const std::array<int, 2>> edges);
+
+/// The space-time graph of a motion graph: formation edges within each sample and motion edges between
+/// consecutive samples of each agent.
+[[nodiscard]] AdjacencyGraph space_time_adjacency(const MotionGraph& graph);
+
+struct PartitionOptions {
+  int parts = 8;                 ///< parts asked for, ≥ 1 (fewer come back when METIS leaves some empty)
+  double imbalance = 1.03;       ///< largest part ≤ imbalance · average size (METIS ufactor), in (1, 10]
+  std::uint64_t seed = 1;        ///< METIS's random seed: same seed, same parts
+};
+
+/// Parts of a graph, their boundaries and their adjacency.
+///   part_of   #vertices: the part of each vertex, in [0, part_count())
+///   parts     #parts: the vertices of each part, increasing
+///   boundary  #parts: the vertices of each part with a neighbour in another part, increasing
+///   adjacent  #parts: the other parts joined to each part by an edge, increasing
+struct Partition {
+  std::vector<int> part_of;
+  std::vector<std::vector<int>> parts;
+  std::vector<std::vector<int>> boundary;
+  std::vector<std::vector<int>> adjacent;
+  std::size_t edge_cut = 0;  ///< edges whose ends lie in different parts
+
+  [[nodiscard]] int part_count() const noexcept { return static_cast<int>(parts.size()); }
+};
+
+/// Splits `graph` with METIS (see the decisions above). Throws ConfigError for parts < 1, parts above the
+/// vertex count, or an imbalance outside (1, 10]; NumericalError when METIS fails.
+[[nodiscard]] Partition partition_graph(const AdjacencyGraph& graph, const PartitionOptions& options);
+
+/// Builds the partition data for a given assignment (any labels ≥ 0; renumbered like partition_graph).
+///   part_of  #vertices
+/// Throws std::invalid_argument for a size mismatch or a negative label.
+[[nodiscard]] Partition make_partition(const AdjacencyGraph& graph, std::span<const int> part_of);
+
+/// The parts within `hops` steps of `seeds` in the part adjacency (seeds included), increasing. hops < 0
+/// means every part connected to a seed.
+[[nodiscard]] std::vector<int> parts_within(const Partition& partition, std::span<const int> seeds, int hops);
+
+}  // namespace throng
