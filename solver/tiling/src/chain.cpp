@@ -31,6 +31,9 @@ ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyfr
   }
 
   const auto start = std::chrono::steady_clock::now();
+  // Keyframes first get their characters continued by the deterministic search while the space around them is
+  // still empty: phase 1 would otherwise crowd their ends, and phase 2 may not remove a keyframe to free them.
+  if (!keyframes.empty()) search(state, stitcher, preference, rng, report, {});
   anneal(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 * f); });
   report.phase1_seconds = seconds_since(start);
   report.phase1_instances = state.instances();

@@ -65,8 +65,10 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
 
   const auto still_dangling = [&](const DanglingEnd& d) {
     if (d.ref.instance >= state.slots()) return false;
+    // An id removed in this sweep may have been reused by an instance of another type: check the fragment.
     const LiveInstance& inst = state.at(d.ref.instance);
-    return inst.alive && inst.ends[d.ref.fragment][static_cast<std::size_t>(d.side)].status == EndStatus::dangling;
+    return inst.alive && d.ref.fragment < inst.ends.size() &&
+           inst.ends[d.ref.fragment][static_cast<std::size_t>(d.side)].status == EndStatus::dangling;
   };
 
   while (state.dangling() > 0 && report.search_steps < o.max_steps) {

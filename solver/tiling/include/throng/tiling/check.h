@@ -49,7 +49,7 @@ struct CheckOptions {
   double obstacle_step_m = 0.1;
   double obstacle_step_s = 0.05;
   double distance_tolerance_m = 1e-6;  ///< overlaps, obstacles, Eq. 1–2 and interpersonal positions
-  double time_tolerance_s = 1e-9;      ///< Eq. 3 and interpersonal times
+  double time_tolerance_s = 1e-6;      ///< Eq. 3 and interpersonal times (the tiler accepts 1e-7 residuals)
   double limit_tolerance = 1e-9;       ///< relative slack on the deformation limits
 };
 

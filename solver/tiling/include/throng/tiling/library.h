@@ -16,15 +16,16 @@
 //   pass            2  walking → walking     walk past each other 0.6 m apart, each sidestepping
 //   handshake       2  walking → walking     approach, stand 0.8 m apart shaking hands, walk on past each other
 //   bump            2  walking → walking     shoulders bump, both are deflected
-//   bow_rows        10 walking → walking     walk in, two rows of five bow to each other, walk out (label "group")
-//   box_pickup      1  standing → carrying   take a box from a stack (props: the stack, the box)
-//   box_carry       1  carrying → carrying   walk with the box (prop: the box)
-//   box_pass        2  carrying, walking → walking, carrying   hand the box over (prop: the box)
-//   box_sit         1  carrying → sitting    put the box down and sit on it (prop: the box)
-//   sit             1  sitting → sitting     sit on the box (prop: the box)
-//   box_stand       1  sitting → standing    stand up and step away (prop: the box, left behind)
+//   bow_rows        10 walking → walking     two rows of five walk in side by side, bow to each other, turn round and walk back out (label "group")
+//   box_pickup      1  standing → carrying   take a box from a stack (prop: the stack)
+//   box_carry       1  carrying → carrying   walk with the box
+//   box_pass        2  carrying, walking → walking, carrying   hand the box over
+//   box_sit         1  carrying → sitting    put the box down and sit on it
+//   sit             1  sitting → sitting     sit on the box
+//   box_stand       1  sitting → walking     stand up and walk away (prop: the box, left behind)
+// A character carrying a box (or sitting on one) is a capsule 0.1 m wider; boxes on the ground are props.
 // Interpersonal constraints tie the characters of two-character and group patches at the frames where they
-// interact (and the box prop to its carrier).
+// interact.
 #pragma once
 
 #include <throng/tiling/patch.h>

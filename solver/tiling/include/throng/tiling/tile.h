@@ -5,7 +5,8 @@
 //           the region (pose classes that no end of the opposite kind ever has make a type unusable: when none
 //           is usable, a NumericalError says why, before any search); precomputes each type's deformation
 //           system; then runs `chains` independent chains (threads × MPI ranks), each:
-//             keyframes → phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2),
+//             keyframes (their characters continued by the phase-2 search while the region is empty) →
+//             phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2),
 //           and keeps the best chain (options.h: Options::chains). Every rank returns the same tiling.
 //
 // Decisions where the paper is unclear (see also options.h, deformation.h):

@@ -1,0 +1,230 @@
+// The tiler: what it returns passes the independent checker; repeatable across thread counts; the preference
+// steers it; impossible libraries are reported at once; repeating tiles continue across their seams.
+#include <catch2/catch.hpp>
+
+#include <throng/core/errors.h>
+#include <throng/core/parallel.h>
+#include <throng/tiling/characters.h>
+#include <throng/tiling/check.h>
+
+#include "tiling_scenes.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+using namespace throng;
+using namespace throng::tiling;
+using namespace throng::tiling::test;
+
+namespace {
+
+PatchLibrary small_library() { return builtin_library({"walk", "turn_left", "turn_right", "stop", "start", "wait", "meet", "pass"}); }
+
+CheckOptions check_options(const Options& o) {
+  CheckOptions c;
+  c.limits = o.limits;
+  c.match = o.match;
+  c.obstacle_step_m = o.obstacle_step_m;
+  c.obstacle_step_s = o.obstacle_step_s;
+  return c;
+}
+
+std::string failures(const CheckReport& r) {
+  std::string s;
+  for (const Failure& f : r.failures) s += std::string(to_string(f.kind)) + ": " + f.message + "\n";
+  return s;
+}
+
+// Every number of a tiling, for bitwise comparison.
+std::vector<double> flatten(const Tiling& t) {
+  std::vector<double> v;
+  for (const Instance& i : t.instances) {
+    v.insert(v.end(), {static_cast<double>(i.type), i.transform.translation.x(), i.transform.translation.y(),
+                       i.transform.angle, i.transform.time_shift});
+    for (const Path& p : i.paths) {
+      for (const auto& q : p.positions) v.insert(v.end(), {q.x(), q.y()});
+      v.insert(v.end(), p.headings.begin(), p.headings.end());
+      v.insert(v.end(), p.times.begin(), p.times.end());
+    }
+  }
+  for (const Connection& c : t.connections) {
+    v.insert(v.end(), {static_cast<double>(c.from.instance), static_cast<double>(c.from.fragment),
+                       static_cast<double>(c.to.instance), static_cast<double>(c.to.fragment),
+                       static_cast<double>(c.image[0]), static_cast<double>(c.image[1]), static_cast<double>(c.image[2])});
+  }
+  return v;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("the tiler's results pass the independent checker") {
+  const PatchLibrary lib = small_library();
+  NoProgress quiet;
+  SECTION("static box") {
+    const Environment env = box(8, 8, 8);
+    const Options o = quick_options(3);
+    const TilingResult r = tile(lib, env, {}, o, quiet);
+    const CheckReport c = check_tiling(lib, r.tiling, env, check_options(o));
+    INFO(failures(c));
+    CHECK(r.report.perfect());
+    CHECK(c.perfect());
+    CHECK(r.report.instances >= 10);
+    CHECK(c.count(FailureKind::dangling) == r.report.dangling);
+  }
+  SECTION("moving obstacle, source and sink") {
+    Environment env = box(8, 8, 8);
+    env.scene.obstacles.push_back({Circle{{0, 0}, 0.8}, {{0.0, {1.0, 4.0}, 0.0}, {8.0, {7.0, 4.0}, 0.0}}, "cart"});
+    env.sources.push_back({{2, 2}, 1.0, 0, 8});
+    env.sinks.push_back({{6, 6}, 1.0, 0, 8});
+    const Options opts = quick_options(5);
+    const TilingResult r = tile(lib, env, {}, opts, quiet);
+    const CheckReport c = check_tiling(lib, r.tiling, env, check_options(opts));
+    INFO(failures(c));
+    CHECK(c.count(FailureKind::overlap) == 0);
+    CHECK(c.count(FailureKind::obstacle) == 0);
+    CHECK(c.count(FailureKind::deformation) == 0);
+    CHECK(c.count(FailureKind::dangling) == r.report.dangling);
+    CHECK(c.total() == c.count(FailureKind::dangling));
+    CHECK(r.report.perfect());
+  }
+  SECTION("keyframed group in a tile periodic in x and y") {
+    const PatchLibrary group = builtin_library({"walk", "turn_left", "turn_right", "stop", "start", "wait", "bow_rows"});
+    const Environment env = box(10, 10, 10, {true, true, false});
+    Keyframe k;
+    k.type = group.find("bow_rows");
+    k.transform.translation = {5, 5};
+    k.transform.time_shift = 5;
+    const Options o = quick_options(9);
+    const TilingResult r = tile(group, env, {k}, o, quiet);
+    const CheckReport c = check_tiling(group, r.tiling, env, check_options(o));
+    INFO(failures(c));
+    CHECK(c.perfect());
+    CHECK(r.report.perfect());
+    REQUIRE_FALSE(r.tiling.instances.empty());
+    CHECK(r.tiling.instances[0].keyframed);
+    CHECK(r.tiling.instances[0].type == k.type);
+  }
+}
+
+TEST_CASE("the same seed gives the same tiling for 1 and 2 threads; another seed another") {
+  const PatchLibrary lib = small_library();
+  const Environment env = box(7, 7, 7);
+  NoProgress quiet;
+  std::vector<double> one, two, other;
+  {
+    ThreadLimit limit(1);
+    one = flatten(tile(lib, env, {}, quick_options(11, 2), quiet).tiling);
+  }
+  {
+    ThreadLimit limit(2);
+    two = flatten(tile(lib, env, {}, quick_options(11, 2), quiet).tiling);
+    other = flatten(tile(lib, env, {}, quick_options(12, 2), quiet).tiling);
+  }
+  CHECK(same_bits(one, two));
+  CHECK_FALSE(same_bits(one, other));
+}
+
+TEST_CASE("a position preference moves the patches toward its target") {
+  const PatchLibrary lib = small_library();
+  const Environment env = box(12, 12, 6);
+  NoProgress quiet;
+  const Eigen::Vector2d target(3, 3);
+  const auto mean_distance = [&](const Options& o) {
+    const TilingResult r = tile(lib, env, {}, o, quiet);
+    double sum = 0;
+    for (const Instance& i : r.tiling.instances) sum += (i.transform.translation - target).norm();
+    return sum / static_cast<double>(r.tiling.instances.size());
+  };
+  Options plain = quick_options(21, 1);
+  plain.search.max_steps = 0;  // phase 1 only: the sampling law
+  Options steered = plain;
+  steered.preference.position = Preference::Position{target, 4.0};
+  const double without = mean_distance(plain), with = mean_distance(steered);
+  INFO("mean distance to the target without " << without << " m, with " << with << " m");
+  CHECK(with < 0.6 * without);
+}
+
+TEST_CASE("a library whose ends can never match is reported at once, not searched") {
+  NoProgress quiet;
+  const auto started = std::chrono::steady_clock::now();
+  // stop: walking → standing, box_pickup: standing → carrying: nothing leaves walking or enters carrying.
+  const PatchLibrary lib = builtin_library({"stop", "box_pickup"});
+  try {
+    (void)tile(lib, box(8, 8, 8), {}, quick_options(1), quiet);
+    FAIL("expected a NumericalError");
+  } catch (const NumericalError& e) {
+    const std::string m = e.what();
+    CHECK(m.find("'stop'") != std::string::npos);
+    CHECK(m.find("walking") != std::string::npos);
+    CHECK(m.find("'box_pickup'") != std::string::npos);
+  }
+  CHECK(std::chrono::steady_clock::now() - started < std::chrono::seconds(5));
+  // A usable subset is tiled, the rest left out and reported.
+  const PatchLibrary mixed = builtin_library({"walk", "stop"});
+  const TilingResult r = tile(mixed, box(6, 6, 6), {}, quick_options(1), quiet);
+  CHECK(r.report.unusable_types == std::vector<std::size_t>{1});
+}
+
+TEST_CASE("a repeating tile laid 2 × 2 gives characters that walk on across the seams") {
+  const PatchLibrary lib = builtin_library({"walk", "turn_left", "turn_right"});
+  const Environment env = box(8, 8, 6, {true, true, false});
+  NoProgress quiet;
+  const Options o = quick_options(4);
+  const TilingResult r = tile(lib, env, {}, o, quiet);
+  const CheckReport c = check_tiling(lib, r.tiling, env, check_options(o));
+  INFO(failures(c));
+  REQUIRE(c.perfect());
+  std::size_t seams = 0;
+  for (const Connection& k : r.tiling.connections) seams += k.image != std::array<int, 3>{0, 0, 0};
+  REQUIRE(seams > 0);
+
+  const Characters laid = lay_out(lib, r.tiling, *env.scene.region, LayoutOptions{10.0, {2, 2, 1}});
+  const CrowdMotion& m = laid.motion;
+  REQUIRE(m.agent_count() > 0);
+  // Continuity: between consecutive frames an agent moves no further than the fastest deformed path segment
+  // allows (a seam taken into the wrong copy would jump by a whole tile, 8 m).
+  double fastest = 0;
+  for (const Instance& i : r.tiling.instances) {
+    for (const Path& p : i.paths) {
+      for (std::size_t s = 0; s + 1 < p.times.size(); ++s) {
+        fastest = std::max(fastest, (p.positions[s + 1] - p.positions[s]).norm() / (p.times[s + 1] - p.times[s]));
+      }
+    }
+  }
+  std::size_t crossings = 0;
+  double worst = 0;
+  std::string where;
+  for (std::size_t n = 0; n < m.agent_count(); ++n) {
+    for (std::size_t f = 0; f + 1 < m.frame_count(); ++f) {
+      if (!m.present(f, n) || !m.present(f + 1, n)) continue;
+      const Eigen::Vector3d a = m.position(f, n), b = m.position(f + 1, n);
+      if ((b - a).norm() > worst) {
+        worst = (b - a).norm();
+        std::ostringstream w;
+        w << "agent " << n << " frame " << f << " (" << a.transpose() << ") → (" << b.transpose() << ")";
+        where = w.str();
+      }
+      crossings += (a.x() < 8) != (b.x() < 8) || (a.y() < 8) != (b.y() < 8);
+    }
+    // Present without a gap: one agent is one continuous piece.
+    const auto [first, last] = m.presence_span(n);
+    for (std::size_t f = first; f < last; ++f) CHECK(m.present(f, n));
+  }
+  INFO(where);
+  CHECK(worst <= fastest * 0.1 + 1e-9);
+  CHECK(fastest < 5.0);
+  CHECK(crossings > 0);
+  // No agent ends inside the laid box except at the end of time: every chain leaves through the outer edge.
+  for (std::size_t n = 0; n < m.agent_count(); ++n) {
+    const auto [first, last] = m.presence_span(n);
+    if (last == m.frame_count()) continue;
+    const Eigen::Vector3d p = m.position(last - 1, n);
+    CHECK(std::min({p.x(), p.y(), 16 - p.x(), 16 - p.y()}) < 0.2);
+  }
+}
