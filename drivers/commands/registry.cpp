@@ -9,6 +9,7 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_import_command());
   c.push_back(make_sketch_command());
   c.push_back(make_edit_command());
+  c.push_back(make_formation_command());
   c.push_back(make_export_command());
   c.push_back(make_info_command());
   c.push_back(make_plot_command());

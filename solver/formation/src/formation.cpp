@@ -271,11 +271,28 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
                   [&](std::size_t g) { spectral[g] = std::make_unique<SpectralGroup>(groups[g], options); });
   progress.update(1.0, "formation analysis");
 
+  // The individual-level edges of every keyframe's graphs (for pictures and the output file).
+  result.keyframe_edges.assign(k_count, {});
+  for (std::size_t k = 0; k < k_count; ++k) {
+    for (std::size_t g = 0; g < node_count; ++g) {
+      const TreeNode& node = tree.nodes[g];
+      const int members = static_cast<int>(node.members.size());
+      for (const auto& [edge, weight] : spectral[g]->graph(static_cast<int>(k)).weights) {
+        if (edge.first >= members || edge.second >= members) continue;
+        const int a = node.members[static_cast<std::size_t>(edge.first)];
+        const int b = node.members[static_cast<std::size_t>(edge.second)];
+        result.keyframe_edges[k].push_back({std::min(a, b), std::max(a, b)});
+      }
+    }
+    std::sort(result.keyframe_edges[k].begin(), result.keyframe_edges[k].end());
+  }
+
   // Frames, from the root down: each group's items give its members' positions and its subgroups' anchors.
   std::vector<double> keyframe_times;
   for (const Keyframe& k : problem.keyframes) keyframe_times.push_back(k.time_s);
   const Timeline timeline = make_timeline(keyframe_times, options.frame_rate_hz);
   const std::size_t frames = timeline.frame_count();
+  result.keyframe_frames = timeline.keyframe_frame;
   std::vector<Eigen::MatrixXd> anchor_paths(node_count);
   anchor_paths[0].resize(d, static_cast<Eigen::Index>(frames));
   for (std::size_t f = 0; f < frames; ++f) {

@@ -154,6 +154,10 @@ struct Result {
   CrowdMotion motion;  ///< #frames by #individuals; species = index of the individual's innermost group
   std::vector<std::vector<int>> correspondence;  ///< per keyframe: row of that keyframe taken by individual i
   Group hierarchy;     ///< the tree used (given, built, or a single root group)
+  std::vector<std::size_t> keyframe_frames;      ///< per keyframe: its frame in `motion`
+  /// Per keyframe: the graph edges between two individuals (i < j, sorted), after edits — in a hierarchy the
+  /// edges between two direct members of one group (edges to a subgroup's barycentre are left out).
+  std::vector<std::vector<Pair>> keyframe_edges;
   CollisionReport collision;
 };
 
