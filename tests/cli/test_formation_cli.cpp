@@ -111,7 +111,7 @@ TEST_CASE("the hierarchy config's groups are stored and used as species") {
   CHECK(groups.read_int64("parent", 1).values == std::vector<std::int64_t>{-1, 0, 0, 0, 0, 0, 0});
 }
 
-TEST_CASE("--print-config shows the effective job and writes nothing; one and two threads give the same bits") {
+TEST_CASE("print-config shows the effective job and writes nothing, and one and two threads give the same bits") {
   const auto dir = test::scratch_dir("cli_formation_print");
   write_file(dir / "job.yaml", small_job());
   std::string printed;
