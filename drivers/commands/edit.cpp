@@ -1,15 +1,19 @@
 // throng edit CROWD.h5 --job EDIT.yaml -o OUT.h5 [--backend eigen|petsc]: deform a group motion by pinning and
 // dragging agents while keeping its formations and trajectories (group motion editing, solver/edit).
 // The job format is in io/edit/include/throng/io/edit_job.h; docs/commands/edit.md is the README section.
+// With local.parts > 0 (or --local-parts) the edit is local (solver/edit local_edit.h): only the parts it reaches
+// are solved; docs/commands/scale.md describes it.
 //
 // Under mpiexec every rank reads the input and builds the problem; the petsc backend shares the solves between
 // the ranks; rank 0 writes the output and prints the report.
 #include <throng/core/errors.h>
+#include <throng/edit/local_edit.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/edit_job.h>
 #include <throng/linalg/mpi.h>
 
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "factories.h"
@@ -27,19 +31,29 @@ struct Edited {
 /// The work shared by `throng edit` and the `edit` step of `throng run`.
 Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) {
   Progress& progress = context.progress();
-  progress.update(0.0, "edit: graph");
-  edit::Editor editor(input.motion, job.options, job.request);
-  progress.update(0.2, "edit: factorise");
-  editor.precompute();
-  progress.update(0.8, "edit: solve");
-  const auto& samples = editor.deform(job.request);
-  progress.update(0.95, "edit: resample");
   auto result = std::make_shared<edit::Result>();
-  result->crowd = editor.resample(samples);
-  result->report = editor.report();
-  result->first_frame = editor.graph().clip.first_frame;
-  result->last_frame = editor.graph().clip.last_frame;
-  result->sample_frames = editor.graph().clip.frames;
+  // Fills the result from either editor (they share the request language and the report).
+  auto finish = [&](const auto& editor, const Eigen::Matrix<double, Eigen::Dynamic, 2>& samples) {
+    progress.update(0.95, "edit: resample");
+    result->crowd = editor.resample(samples);
+    result->report = editor.report();
+    result->first_frame = editor.graph().clip.first_frame;
+    result->last_frame = editor.graph().clip.last_frame;
+    result->sample_frames = editor.graph().clip.frames;
+  };
+  if (job.options.local.parts > 0) {
+    progress.update(0.0, "edit: graph and partition");
+    edit::LocalEditor editor(input.motion, job.options, job.request);
+    progress.update(0.3, "edit: local solve");
+    finish(editor, editor.deform(job.request));
+  } else {
+    progress.update(0.0, "edit: graph");
+    edit::Editor editor(input.motion, job.options, job.request);
+    progress.update(0.2, "edit: factorise");
+    editor.precompute();
+    progress.update(0.8, "edit: solve");
+    finish(editor, editor.deform(job.request));
+  }
   progress.update(1.0, "edit: done");
 
   const edit::Report& r = result->report;
@@ -71,6 +85,13 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
   e.report["precompute_s"] = r.precompute_seconds;
   e.report["solve_s"] = r.solve_seconds;
   e.report["max_constraint_residual_m"] = r.max_constraint_residual;
+  if (job.options.local.parts > 0) {
+    e.report["parts"] = r.parts;
+    e.report["region_parts"] = r.region_parts;
+    e.report["region_vertices"] = r.region_vertices;
+    e.report["region_boundary"] = r.region_boundary;
+    e.report["partition_s"] = r.partition_seconds;
+  }
   return e;
 }
 
@@ -87,12 +108,21 @@ class EditCommand final : public Command {
     app.add_option("-o,--output", output_, "Crowd file to write (.h5): the edited clip")->required();
     app.add_option("--backend", backend_, "Solver backend, overriding the job's solver.backend")
         ->check(CLI::IsMember({"eigen", "petsc"}));
+    app.add_option("--local-parts", local_parts_,
+                   "Local edit: split the graph into this many METIS parts and solve only those the edit reaches "
+                   "(overrides the job's local.parts; 0 = global)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--halo", halo_, "Local edit: parts within this many hops of the reached ones are solved too "
+                                    "(overrides local.halo; -1 = every connected part)")
+        ->check(CLI::Range(-1, 1000000));
   }
 
   void run(Context& context) override {
     const ConfigNode job = context.load_job(job_path_);
     EditJob parsed = read_edit_job(job);
     if (!backend_.empty()) parsed.options.solver.backend = backend_;
+    if (local_parts_) parsed.options.local.parts = *local_parts_;
+    if (halo_) parsed.options.local.halo = *halo_;
     const YAML::Node effective = effective_edit_job(parsed);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
@@ -131,6 +161,8 @@ class EditCommand final : public Command {
   std::filesystem::path job_path_;
   std::filesystem::path output_;
   std::string backend_;
+  std::optional<int> local_parts_;
+  std::optional<int> halo_;
 };
 
 }  // namespace

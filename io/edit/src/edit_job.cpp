@@ -38,6 +38,12 @@ void bind(OptionBinder& b, Options& o) {
     f.field("degenerate_ratio", o.features.degenerate_ratio, Range{0.0, 1.0, false, true});
   });
   b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
+  b.section("local", [&](OptionBinder& l) {
+    l.field("parts", o.local.parts, Range::closed(0, 1e9));
+    l.field("halo", o.local.halo, Range::closed(-1, 1e9));
+    l.field("seed", o.local.seed, Range::closed(0, 2147483646));
+    l.field("max_cached_regions", o.local.max_cached_regions, Range::closed(1, 1e6));
+  });
 }
 
 // An input frame index (≥ 0), for the clip and the formation edits.
@@ -324,6 +330,11 @@ void write_edit_data(const h5::Group& throng_parameters, const edit::Result& res
   g.set_attribute("first_frame", static_cast<std::int64_t>(result.first_frame));
   g.set_attribute("last_frame", static_cast<std::int64_t>(result.last_frame));
   g.set_attribute("factorization", result.report.factorization);
+  if (result.report.parts > 0) {  // a local edit: how much of the graph it solved
+    g.set_attribute("local_parts", static_cast<std::int64_t>(result.report.parts));
+    g.set_attribute("region_parts", static_cast<std::int64_t>(result.report.region_parts));
+    g.set_attribute("region_vertices", static_cast<std::int64_t>(result.report.region_vertices));
+  }
 }
 
 }  // namespace throng

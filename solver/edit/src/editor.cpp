@@ -4,6 +4,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/edit/edit.h>
+#include <throng/edit/local_edit.h>
 #include <throng/linalg/least_squares.h>
 
 #include <algorithm>
@@ -85,6 +86,11 @@ void validate(const Options& o) {
   }
   if (!(o.features.degenerate_ratio >= 0 && o.features.degenerate_ratio < 1)) {
     throw ConfigError("features.degenerate_ratio " + std::to_string(o.features.degenerate_ratio) + ": expected [0, 1)");
+  }
+  if (o.local.parts < 0) throw ConfigError("local.parts " + std::to_string(o.local.parts) + ": expected ≥ 0 (0: global solves)");
+  if (o.local.halo < -1) throw ConfigError("local.halo " + std::to_string(o.local.halo) + ": expected ≥ 0, or −1 for every connected part");
+  if (o.local.max_cached_regions < 1) {
+    throw ConfigError("local.max_cached_regions " + std::to_string(o.local.max_cached_regions) + ": expected ≥ 1");
   }
 }
 
@@ -270,6 +276,8 @@ void Editor::precompute() {
   s.report.precompute_seconds = seconds_since(start);
   s.report.factorization = s.step1_solver.report().factorization.method;
   s.report.fallback = s.step1_solver.report().factorization.fallback_reason;
+  s.report.factor_nonzeros = s.step1_solver.report().factorization.factor_nonzeros +
+                             (s.options.scale_compensation ? s.step2_solver.report().factorization.factor_nonzeros : 0.0);
   s.update_counts();
 }
 
@@ -309,6 +317,7 @@ const Report& Editor::report() const noexcept { return state_->report; }
 const Options& Editor::options() const noexcept { return state_->options; }
 
 Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request) {
+  if (options.local.parts > 0) return edit_locally(crowd, options, request);
   Editor editor(crowd, options, request);
   editor.precompute();
   const auto& samples = editor.deform(request);

@@ -27,6 +27,11 @@
 //     petsc_options: ""               # e.g. "-pc_type hypre", written without the prefix
 //     constraint_tolerance: 1e-8      # a constraint is met when |c·x − d| ≤ tol·(1 + ‖x‖∞)
 //     schur_cache_megabytes: 512
+//   local:                            # local edits (throng/edit/local_edit.h, docs/commands/scale.md)
+//     parts: 0                        # METIS parts of the space-time graph; 0 = global solve (the --local-parts flag overrides)
+//     halo: 1                         # parts within this many hops of the reached ones are solved too; -1 = all connected (--halo)
+//     seed: 1                         # METIS seed: same seed, same parts
+//     max_cached_regions: 8           # factorised regions kept for later drags (matters to interactive use)
 //   pins:                             # an agent at a frame stays (or is put) somewhere
 //     - {agent: 12, frame: 40}                    # where it is
 //     - {agent: 12, frame: 80, position: [3, 4]}
@@ -70,6 +75,7 @@ struct EditJob {
 ///   sample_frames   int64[S]   the input frames the graph sampled (the clip's frames are first..last)
 ///   left_out        int64[L]   ids of agents absent from part of the clip (not edited, not in the output)
 ///   attributes: first_frame, last_frame (input frames of the clip), factorization (the solver's method)
+///               and for a local edit local_parts, region_parts, region_vertices (how much of the graph it solved)
 void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result);
 
 }  // namespace throng

@@ -47,6 +47,16 @@
 
 namespace throng::edit {
 
+/// Local edits (throng/edit/local_edit.h): the space-time graph is split into `parts` METIS parts, and an edit
+/// solves only the parts holding a moved handle or a general constraint plus the parts within `halo` hops of
+/// them, with the rest pinned to its current positions. parts = 0 solves the whole graph (the Editor).
+struct LocalOptions {
+  int parts = 0;                 ///< METIS parts of the space-time graph, ≥ 0 (0: off, global solves)
+  int halo = 1;                  ///< part hops around the reached parts, ≥ 0; −1: every connected part
+  std::uint64_t seed = 1;        ///< METIS's seed (same seed, same parts)
+  int max_cached_regions = 8;    ///< factorised regions kept for reuse across drags (least recently used go), ≥ 1
+};
+
 /// Everything that shapes the deformation. The paper gives no values for α, β, α′, β′; with the unit-free
 /// feature weights of throng/graph/features.h, 1 balances the terms (tests/edit: the Figure 5 turn stays within
 /// ~6° of the heading, the Figure 3 stretch shrinks tenfold in step 2).
@@ -60,6 +70,7 @@ struct Options {
   double beta_prime = 1.0;     ///< β′: weight of EST in step 2 (Eq. 9), ≥ 0
   bool scale_compensation = true;  ///< run step 2 (off: the result is step 1's)
   linalg::SolverOptions solver;    ///< backend and its settings
+  LocalOptions local;              ///< solve only the parts an edit reaches (throng/edit/local_edit.h); off by default
 };
 
 /// Frames in a request are input frame indices; a negative frame counts back from the clip's last frame
@@ -137,6 +148,14 @@ struct Report {
   double max_constraint_residual = 0;  ///< metres, over both steps, last deform()
   int factorizations = 0;              ///< numeric factorisations so far, both steps (a drag adds none)
   int schur_columns = 0;               ///< back-substitutions spent on constraint columns so far, both steps
+  double factor_nonzeros = 0;          ///< entries of both steps' Cholesky factors, last precompute (direct backends)
+  // Local edits only (Options::local.parts > 0), last deform():
+  int parts = 0;                       ///< parts of the partition
+  int region_parts = 0;                ///< parts solved
+  std::size_t region_vertices = 0;     ///< vertices solved (the rest kept their current positions)
+  std::size_t region_boundary = 0;     ///< vertices outside the region pinned because features tie them to it
+  int regions_built = 0;               ///< regions assembled and factorised so far (a cached region adds none)
+  double partition_seconds = 0;        ///< METIS
 };
 
 /// The stateful editor: build once, precompute once per handle set, deform per drag.
@@ -187,7 +206,8 @@ struct Result {
   std::vector<std::size_t> sample_frames;  ///< the input frames the graph sampled
 };
 
-/// One-off: build, precompute and deform once (what `throng edit` runs).
+/// One-off: build, precompute and deform once (what `throng edit` runs). With options.local.parts > 0 the edit
+/// is local (a LocalEditor on the input positions): vertices outside the region keep their input positions.
 [[nodiscard]] Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request);
 
 /// Checks option values (weights finite and ≥ 0, at least one term with a positive weight); throws ConfigError

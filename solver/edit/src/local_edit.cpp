@@ -1,0 +1,430 @@
+// LocalEditor: the Editor's two steps over the region an edit reaches (see throng/edit/local_edit.h).
+#include "request.h"
+#include "resample.h"
+#include "systems.h"
+
+#include <throng/core/errors.h>
+#include <throng/edit/local_edit.h>
+#include <throng/linalg/least_squares.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <list>
+#include <set>
+#include <string>
+
+namespace throng::edit {
+namespace {
+
+using Index = Eigen::Index;
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The similarity modes (translations, rotation, scaling) interleaved x, y: the near-null space of the
+// unconstrained step-1 energy, a hint for multigrid backends (as the Editor gives it).
+Eigen::MatrixXd similarity_modes(const Positions& p) {
+  const Eigen::RowVector2d centre = p.rows() > 0 ? Eigen::RowVector2d(p.colwise().mean()) : Eigen::RowVector2d(0, 0);
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
+  for (Index v = 0; v < p.rows(); ++v) {
+    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
+    modes(2 * v, 0) = 1.0;
+    modes(2 * v + 1, 1) = 1.0;
+    modes(2 * v, 2) = -y;
+    modes(2 * v + 1, 2) = x;
+    modes(2 * v, 3) = x;
+    modes(2 * v + 1, 3) = y;
+  }
+  return modes;
+}
+
+Positions as_positions(const Eigen::MatrixXd& x) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
+}
+
+// Same shape, pattern and values (both compressed).
+bool same_matrix(const linalg::SparseMatrix& a, const linalg::SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const auto nnz = static_cast<std::size_t>(a.nonZeros());
+  const auto outer = static_cast<std::size_t>(a.outerSize()) + 1;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + outer, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
+}
+
+// One factorised region: the subproblem over R's unknowns with its boundary and handles pinned.
+//   vertices  local → graph vertex: R (increasing), then the boundary B (increasing)
+//   pinned    local vertices pinned, in set_pinned order: the handles inside R (increasing), then B
+struct Region {
+  Region(const linalg::SolverOptions& solver) : step1_solver(solver), step2_solver(solver) {}
+
+  // Key.
+  std::vector<int> parts;
+  std::vector<Index> handles;  // graph vertices of the handles inside R, increasing
+  linalg::SparseMatrix C;      // the constraint rows on local unknowns
+  // Subproblem.
+  std::vector<int> vertices;
+  std::size_t inside = 0;
+  std::vector<Index> pinned;
+  FeatureSet features;  // local indices
+  Positions original;   // local original positions (the triangles step 2 restores)
+  Objective step1, step2;
+  linalg::ConstrainedLeastSquares step1_solver, step2_solver;
+  std::uint64_t last_used = 0;
+};
+
+// Local copy of the features touching R (any of u, v, w inside), in the global order; fills `local_of` for the
+// boundary vertices they reach (appended to `vertices`).
+std::vector<Feature> touching(const std::vector<Feature>& all, const std::vector<int>& inside_mark, std::vector<int>& local_of,
+                              std::vector<int>& boundary) {
+  std::vector<Feature> out;
+  for (const Feature& f : all) {
+    const auto u = static_cast<std::size_t>(f.u), v = static_cast<std::size_t>(f.v), w = static_cast<std::size_t>(f.w);
+    if (!inside_mark[u] && !inside_mark[v] && !inside_mark[w]) continue;
+    for (std::size_t x : {u, v, w}) {
+      if (local_of[x] == -1) {
+        local_of[x] = -2;  // boundary, numbered once all are known
+        boundary.push_back(static_cast<int>(x));
+      }
+    }
+    out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+struct LocalEditor::State {
+  explicit State(const Options& o) : options(o) {}
+
+  Options options;
+  std::vector<std::int64_t> crowd_ids;
+  CrowdMotion source;
+  MotionGraph graph;
+  FeatureSet features;
+  Partition partition;
+  Positions current, result;
+  std::vector<int> region, region_parts;
+  std::list<Region> cache;  // std::list: solvers stay put while others come and go
+  std::uint64_t clock = 0;
+  int retired_factorizations = 0, retired_schur_columns = 0;
+  Report report;
+  // Scratch over graph vertices, all −1 / 0 between calls.
+  std::vector<int> local_of;
+  std::vector<int> inside_mark;
+
+  [[nodiscard]] const Clip& clip() const { return graph.clip; }
+
+  std::string vertex_name(Index v) const {
+    const auto n = static_cast<Index>(clip().agent_count());
+    return "agent " + std::to_string(clip().ids[static_cast<std::size_t>(v % n)]) + " at frame " +
+           std::to_string(clip().frames[static_cast<std::size_t>(v / n)]);
+  }
+
+  // The constraint rows on the region's local unknowns (local_of filled for the region).
+  linalg::SparseMatrix local_constraints(const linalg::SparseMatrix& C, Index local_vertices) const {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Index k = 0; k < C.outerSize(); ++k) {
+      for (linalg::SparseMatrix::InnerIterator it(C, k); it; ++it) {
+        const int local = local_of[static_cast<std::size_t>(it.col() / 2)];
+        entries.emplace_back(it.row(), 2 * static_cast<Index>(local) + it.col() % 2, it.value());
+      }
+    }
+    linalg::SparseMatrix out(C.rows(), 2 * local_vertices);
+    out.setFromTriplets(entries.begin(), entries.end());
+    out.makeCompressed();
+    return out;
+  }
+
+  void fill_local_of(const Region& r) {
+    for (std::size_t i = 0; i < r.vertices.size(); ++i) local_of[static_cast<std::size_t>(r.vertices[i])] = static_cast<int>(i);
+  }
+  void clear_local_of(const std::vector<int>& vertices) {
+    for (int v : vertices) local_of[static_cast<std::size_t>(v)] = -1;
+  }
+
+  // Assembles and factorises the region of `parts` (vertices R, marked in inside_mark).
+  Region& build(const std::vector<int>& parts, const std::vector<Index>& handles, const linalg::SparseMatrix& C) {
+    const auto start = Clock::now();
+    Region& r = cache.emplace_front(options.solver);
+    r.parts = parts;
+    r.handles = handles;
+    r.vertices = region;
+    r.inside = region.size();
+    for (std::size_t i = 0; i < region.size(); ++i) local_of[static_cast<std::size_t>(region[i])] = static_cast<int>(i);
+    std::vector<int> boundary;
+    r.features.spatial = touching(features.spatial, inside_mark, local_of, boundary);
+    r.features.temporal = touching(features.temporal, inside_mark, local_of, boundary);
+    r.features.spatiotemporal = touching(features.spatiotemporal, inside_mark, local_of, boundary);
+    std::sort(boundary.begin(), boundary.end());
+    r.vertices.insert(r.vertices.end(), boundary.begin(), boundary.end());
+    fill_local_of(r);
+    for (auto* set : {&r.features.spatial, &r.features.temporal, &r.features.spatiotemporal}) {
+      for (Feature& f : *set) {
+        f.u = local_of[static_cast<std::size_t>(f.u)];
+        f.v = local_of[static_cast<std::size_t>(f.v)];
+        f.w = local_of[static_cast<std::size_t>(f.w)];
+      }
+    }
+    for (Index h : handles) r.pinned.push_back(local_of[static_cast<std::size_t>(h)]);
+    for (std::size_t i = r.inside; i < r.vertices.size(); ++i) r.pinned.push_back(static_cast<Index>(i));
+    const auto n = static_cast<Index>(r.vertices.size());
+    r.original.resize(n, 2);
+    for (Index i = 0; i < n; ++i) r.original.row(i) = clip().positions.row(r.vertices[static_cast<std::size_t>(i)]);
+    r.C = local_constraints(C, n);
+    clear_local_of(r.vertices);
+
+    std::vector<Index> pinned_unknowns;
+    pinned_unknowns.reserve(2 * r.pinned.size());
+    for (Index v : r.pinned) {
+      pinned_unknowns.push_back(2 * v);
+      pinned_unknowns.push_back(2 * v + 1);
+    }
+    const Eigen::MatrixXd modes = similarity_modes(r.original);
+    r.step1 = step1_objective(r.features, n, options.alpha, options.beta);
+    r.step1_solver.set_objective(r.step1.A, r.step1.weights);
+    r.step1_solver.set_near_null_space(modes, 2);
+    r.step1_solver.set_complex_pairs(true);
+    r.step1_solver.set_pinned(pinned_unknowns);
+    r.step1_solver.set_constraints(r.C);
+    if (options.scale_compensation) {
+      r.step2 = step2_objective(r.features, n, options.alpha_prime, options.beta_prime);
+      r.step2_solver.set_objective(r.step2.A, r.step2.weights);
+      r.step2_solver.set_near_null_space(modes, 2);
+      r.step2_solver.set_complex_pairs(true);
+      r.step2_solver.set_pinned(pinned_unknowns);
+      r.step2_solver.set_constraints(r.C);
+    }
+    try {
+      in_region_terms(r, [&] {
+        r.step1_solver.precompute();
+        if (options.scale_compensation) r.step2_solver.precompute();
+        return 0;
+      }, nullptr);
+    } catch (...) {
+      cache.pop_front();
+      throw;
+    }
+    ++report.regions_built;
+    report.precompute_seconds = seconds_since(start);
+    report.factorization = r.step1_solver.report().factorization.method;
+    report.fallback = r.step1_solver.report().factorization.fallback_reason;
+    report.factor_nonzeros = r.step1_solver.report().factorization.factor_nonzeros +
+                             (options.scale_compensation ? r.step2_solver.report().factorization.factor_nonzeros : 0.0);
+    // Keep the cache within its limit (the new region is at the front and stays).
+    while (cache.size() > static_cast<std::size_t>(options.local.max_cached_regions)) {
+      auto oldest = std::min_element(std::next(cache.begin()), cache.end(),
+                                     [](const Region& a, const Region& b) { return a.last_used < b.last_used; });
+      retired_factorizations += oldest->step1_solver.report().factorizations + oldest->step2_solver.report().factorizations;
+      retired_schur_columns += oldest->step1_solver.report().schur_columns + oldest->step2_solver.report().schur_columns;
+      cache.erase(oldest);
+    }
+    return r;
+  }
+
+  // Runs a solver step of region r, turning its errors into messages in the user's terms.
+  template <typename Step>
+  auto in_region_terms(const Region& r, Step&& step, const Request* request, const ResolvedRequest* resolved = nullptr)
+      -> decltype(step()) {
+    try {
+      return step();
+    } catch (const linalg::SingularMatrixError& e) {
+      const Index unknown = e.index();
+      const std::string where =
+          unknown >= 0 && static_cast<std::size_t>(unknown / 2) < r.vertices.size()
+              ? " (first undetermined: " + vertex_name(r.vertices[static_cast<std::size_t>(unknown / 2)]) + ")"
+              : std::string();
+      throw NumericalError("the local region (" + std::to_string(r.parts.size()) + " parts, " + std::to_string(r.inside) +
+                           " vertices) is singular: " + e.what() + where +
+                           "; pin or drag two vertices of every group in it, or widen local.halo");
+    } catch (const linalg::ConstraintError& e) {
+      if (request == nullptr || resolved == nullptr) throw;
+      std::set<std::size_t> sources;
+      for (Index row : e.rows()) sources.insert(resolved->row_source[static_cast<std::size_t>(row)]);
+      std::string names;
+      for (std::size_t k : sources) names += (names.empty() ? "" : " and ") + describe(*request, k);
+      throw NumericalError("contradictory constraints: " + names + " cannot all be met with the pins, the drags and the "
+                           "local region's boundary [" + std::string(e.what()) + "]");
+    }
+  }
+
+  void update_counts() {
+    report.factorizations = retired_factorizations;
+    report.schur_columns = retired_schur_columns;
+    for (const Region& r : cache) {
+      report.factorizations += r.step1_solver.report().factorizations + r.step2_solver.report().factorizations;
+      report.schur_columns += r.step1_solver.report().schur_columns + r.step2_solver.report().schur_columns;
+    }
+  }
+};
+
+LocalEditor::LocalEditor(const CrowdMotion& crowd, const Options& options, const Request& request)
+    : state_(std::make_unique<State>(options)) {
+  validate(options);
+  if (options.local.parts < 1) {
+    throw ConfigError("local.parts " + std::to_string(options.local.parts) + ": expected ≥ 1 for a local edit");
+  }
+  State& s = *state_;
+  const auto start = Clock::now();
+  s.crowd_ids = crowd.ids;
+  const Clip bounds = make_clip(crowd, options.clip);
+  const std::vector<std::size_t> frames = required_frames(request, bounds, crowd.ids);
+  s.graph = build_motion_graph(make_clip(crowd, options.clip, frames), options.formation);
+  s.features = compute_features(s.graph, options.features);
+  s.source = slice_clip(crowd, s.graph.clip);
+  s.current = s.graph.clip.positions;
+  s.result = s.current;
+  const std::size_t vertices = s.graph.vertex_count();
+  if (static_cast<std::size_t>(options.local.parts) > vertices) {
+    throw ConfigError("local.parts " + std::to_string(options.local.parts) + ": the clip's graph has only " +
+                      std::to_string(vertices) + " vertices");
+  }
+  (void)resolve(request, s.graph.clip, s.crowd_ids);  // fail early on a request that does not fit
+  Report& r = s.report;
+  r.graph_seconds = seconds_since(start);
+  const auto partition_start = Clock::now();
+  s.partition = partition_graph(space_time_adjacency(s.graph), {.parts = options.local.parts, .seed = options.local.seed});
+  r.partition_seconds = seconds_since(partition_start);
+  s.local_of.assign(vertices, -1);
+  s.inside_mark.assign(vertices, 0);
+  r.samples = s.graph.sample_count();
+  r.agents = s.graph.agent_count();
+  r.unknowns = 2 * vertices;
+  r.spatial_features = s.features.spatial.size();
+  r.temporal_features = s.features.temporal.size();
+  r.spatiotemporal_features = s.features.spatiotemporal.size();
+  r.left_out = s.graph.clip.left_out;
+  r.parts = s.partition.part_count();
+}
+
+LocalEditor::~LocalEditor() = default;
+
+const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Request& request) {
+  State& s = *state_;
+  const ResolvedRequest resolved = resolve(request, s.graph.clip, s.crowd_ids);
+  Report& report = s.report;
+  report.handles = resolved.handle_vertices.size();
+  report.constraint_rows = static_cast<std::size_t>(resolved.C.rows());
+
+  // 1. Reached parts: moved handles and constrained vertices.
+  std::vector<int> seeds;
+  for (std::size_t k = 0; k < resolved.handle_vertices.size(); ++k) {
+    const Index v = resolved.handle_vertices[k];
+    if (resolved.handle_targets.row(static_cast<Index>(k)) != s.current.row(v)) seeds.push_back(s.partition.part_of[static_cast<std::size_t>(v)]);
+  }
+  for (Index k = 0; k < resolved.C.outerSize(); ++k) {
+    for (linalg::SparseMatrix::InnerIterator it(resolved.C, k); it; ++it) {
+      seeds.push_back(s.partition.part_of[static_cast<std::size_t>(it.col() / 2)]);
+    }
+  }
+  std::sort(seeds.begin(), seeds.end());
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  const auto start = Clock::now();
+  s.result = s.current;
+  s.region.clear();
+  s.region_parts.clear();
+  report.region_parts = 0;
+  report.region_vertices = report.region_boundary = 0;
+  report.max_constraint_residual = 0;
+  if (seeds.empty()) {
+    report.solve_seconds = seconds_since(start);
+    return s.result;
+  }
+
+  // 2. The region: reached parts and their halo.
+  s.region_parts = parts_within(s.partition, seeds, s.options.local.halo);
+  for (int part : s.region_parts) {
+    const auto& list = s.partition.parts[static_cast<std::size_t>(part)];
+    s.region.insert(s.region.end(), list.begin(), list.end());
+  }
+  std::sort(s.region.begin(), s.region.end());
+  for (int v : s.region) s.inside_mark[static_cast<std::size_t>(v)] = 1;
+  std::vector<Index> handles;  // handles inside R (increasing, as handle_vertices)
+  std::vector<Index> handle_rows;
+  for (std::size_t k = 0; k < resolved.handle_vertices.size(); ++k) {
+    if (s.inside_mark[static_cast<std::size_t>(resolved.handle_vertices[k])]) {
+      handles.push_back(resolved.handle_vertices[k]);
+      handle_rows.push_back(static_cast<Index>(k));
+    }
+  }
+
+  // 3. A cached region with the same key, or a new one.
+  Region* region = nullptr;
+  for (Region& r : s.cache) {
+    if (r.parts != s.region_parts || r.handles != handles) continue;
+    s.fill_local_of(r);
+    const linalg::SparseMatrix C = s.local_constraints(resolved.C, static_cast<Index>(r.vertices.size()));
+    s.clear_local_of(r.vertices);
+    if (same_matrix(C, r.C)) {
+      region = &r;
+      break;
+    }
+  }
+  try {
+    if (region == nullptr) region = &s.build(s.region_parts, handles, resolved.C);
+  } catch (...) {
+    for (int v : s.region) s.inside_mark[static_cast<std::size_t>(v)] = 0;
+    throw;
+  }
+  for (int v : s.region) s.inside_mark[static_cast<std::size_t>(v)] = 0;
+  Region& r = *region;
+  r.last_used = ++s.clock;
+
+  // 4. Pin values: handle targets, then the boundary's current positions; solve both steps.
+  const auto solve_start = Clock::now();
+  Eigen::VectorXd pins(2 * static_cast<Index>(r.pinned.size()));
+  for (std::size_t k = 0; k < handle_rows.size(); ++k) {
+    pins.segment<2>(2 * static_cast<Index>(k)) = resolved.handle_targets.row(handle_rows[k]).transpose();
+  }
+  for (std::size_t i = r.inside; i < r.vertices.size(); ++i) {
+    const auto k = static_cast<Index>(handle_rows.size() + i - r.inside);
+    pins.segment<2>(2 * k) = s.current.row(r.vertices[i]).transpose();
+  }
+  Positions x = as_positions(s.in_region_terms(r, [&] { return r.step1_solver.solve(r.step1.b, pins, resolved.d); }, &request, &resolved));
+  report.max_constraint_residual = r.step1_solver.report().max_constraint_residual;
+  if (s.options.scale_compensation) {
+    set_step2_targets(r.features, r.original, x, r.step2.b);
+    x = as_positions(s.in_region_terms(r, [&] { return r.step2_solver.solve(r.step2.b, pins, resolved.d); }, &request, &resolved));
+    report.max_constraint_residual = std::max(report.max_constraint_residual, r.step2_solver.report().max_constraint_residual);
+  }
+  for (std::size_t i = 0; i < r.inside; ++i) s.result.row(r.vertices[i]) = x.row(static_cast<Index>(i));
+
+  report.region_parts = static_cast<int>(s.region_parts.size());
+  report.region_vertices = r.inside;
+  report.region_boundary = r.vertices.size() - r.inside;
+  report.solve_seconds = seconds_since(solve_start);
+  s.update_counts();
+  return s.result;
+}
+
+void LocalEditor::commit() { state_->current = state_->result; }
+
+const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::current() const noexcept { return state_->current; }
+const std::vector<int>& LocalEditor::region() const noexcept { return state_->region; }
+const std::vector<int>& LocalEditor::region_parts() const noexcept { return state_->region_parts; }
+
+CrowdMotion LocalEditor::resample(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& samples) const {
+  if (samples.rows() != static_cast<Index>(state_->graph.vertex_count())) {
+    throw std::invalid_argument("LocalEditor::resample: " + std::to_string(samples.rows()) + " rows for " +
+                                std::to_string(state_->graph.vertex_count()) + " vertices");
+  }
+  return resample_clip(state_->source, state_->graph.clip, samples);
+}
+
+const MotionGraph& LocalEditor::graph() const noexcept { return state_->graph; }
+const FeatureSet& LocalEditor::features() const noexcept { return state_->features; }
+const Partition& LocalEditor::partition() const noexcept { return state_->partition; }
+const Report& LocalEditor::report() const noexcept { return state_->report; }
+const Options& LocalEditor::options() const noexcept { return state_->options; }
+
+Result edit_locally(const CrowdMotion& crowd, const Options& options, const Request& request) {
+  LocalEditor editor(crowd, options, request);
+  const auto& samples = editor.deform(request);
+  const Clip& clip = editor.graph().clip;
+  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
+}
+
+}  // namespace throng::edit

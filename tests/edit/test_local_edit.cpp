@@ -1,0 +1,248 @@
+// Local edits (throng/edit/local_edit.h): what a wrong region, boundary or cache would break.
+#include "../graph/synthetic_crowd.h"
+
+#include <throng/core/errors.h>
+#include <throng/edit/edit.h>
+#include <throng/edit/local_edit.h>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+using namespace throng;
+using namespace throng::edit;
+using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr std::size_t frames = 61;
+
+Drag hold(Frame first, Frame last) {
+  Drag d;
+  d.selection.first_frame = first;
+  d.selection.last_frame = last;
+  return d;
+}
+
+// 48 agents marching for 61 frames, sampled every second frame: 31 samples, 1,488 vertices.
+CrowdMotion scene() { return test::marching_grid(6, 8, frames, 1.0, 1.2, 0.1, 0.3, 0.2); }
+
+Options local_options(int parts, int halo) {
+  Options o;
+  o.clip.sample_step = 2;
+  o.local.parts = parts;
+  o.local.halo = halo;
+  return o;
+}
+
+// Everyone held at the first and last frame; agents 100..103 (a corner of the grid) dragged at frame 30.
+Request corner_drag(Eigen::Vector2d offset, std::vector<std::int64_t> agents = {100, 101, 102, 103}) {
+  Request r;
+  r.drags = {hold(0, 0), hold(-1, -1)};
+  Drag d = hold(30, 30);
+  d.selection.agents = std::move(agents);
+  d.offset = offset;
+  r.drags.push_back(d);
+  return r;
+}
+
+bool same_bits(const Eigen::RowVector2d& a, const Eigen::RowVector2d& b) { return std::memcmp(a.data(), b.data(), sizeof(double) * 2) == 0; }
+
+// The step-1 systems are ~3·10³ unknowns over ~20 m; Cholesky round-off is ~1e-13 m (see test_properties.cpp).
+// Assembling a subproblem sums AᵀWA in another order, so local and global differ by round-off only.
+constexpr double rounding = 1e-9;
+
+}  // namespace
+
+TEST_CASE("a local edit whose halo covers the graph equals the global edit") {
+  const CrowdMotion crowd = scene();
+  const Request request = corner_drag({1.5, -0.8});
+  for (bool scale_compensation : {true, false}) {
+    Options global = local_options(0, 0);
+    global.scale_compensation = scale_compensation;
+    Editor editor(crowd, global, request);
+    editor.precompute();
+    const Positions expected = editor.deform(request);
+    for (auto [parts, halo] : {std::pair{1, 0}, std::pair{6, -1}, std::pair{6, 100}}) {
+      INFO("parts " << parts << ", halo " << halo << ", scale compensation " << scale_compensation);
+      Options options = local_options(parts, halo);
+      options.scale_compensation = scale_compensation;
+      LocalEditor local(crowd, options, request);
+      const Positions got = local.deform(request);
+      CHECK(local.region().size() == editor.graph().vertex_count());
+      CHECK(local.report().region_boundary == 0);
+      CHECK((got - expected).cwiseAbs().maxCoeff() < rounding);
+      // And the edit really moved things (so the comparison is not between two copies of the input).
+      CHECK((got - editor.graph().clip.positions).cwiseAbs().maxCoeff() > 0.1);
+    }
+  }
+}
+
+TEST_CASE("vertices outside the local region keep their input positions bit for bit") {
+  const CrowdMotion crowd = scene();
+  const Request request = corner_drag({1.5, -0.8});
+  LocalEditor local(crowd, local_options(12, 0), request);
+  const Positions got = local.deform(request);
+  const Positions& input = local.graph().clip.positions;
+  const auto& region = local.region();
+  REQUIRE_FALSE(region.empty());
+  CHECK(region.size() < static_cast<std::size_t>(input.rows()) / 2);  // one part of twelve (the drag sits in one or two)
+  CHECK(local.report().region_boundary > 0);
+  std::vector<char> inside(static_cast<std::size_t>(input.rows()), 0);
+  for (int v : region) inside[static_cast<std::size_t>(v)] = 1;
+  std::size_t outside = 0, moved_inside = 0;
+  for (Eigen::Index v = 0; v < input.rows(); ++v) {
+    if (inside[static_cast<std::size_t>(v)]) {
+      moved_inside += (got.row(v) - input.row(v)).norm() > 1e-6;
+    } else {
+      ++outside;
+      if (!same_bits(got.row(v), input.row(v))) FAIL("vertex " << v << " outside the region moved");
+    }
+  }
+  CHECK(outside > 0);
+  CHECK(moved_inside > 4);  // more than the dragged vertices: the region deforms around them
+  // The drag is met exactly, the held frames stay.
+  const Clip& clip = local.graph().clip;
+  const auto s30 = static_cast<std::size_t>(clip.sample_of_frame(30));
+  for (std::size_t j = 0; j < 4; ++j) {
+    const Eigen::Index v = clip.vertex(s30, j);
+    CHECK((got.row(v) - input.row(v) - Eigen::RowVector2d(1.5, -0.8)).norm() < rounding);
+  }
+}
+
+TEST_CASE("agents a one-off local edit never reaches come back bit for bit at every frame") {
+  // A wide, short crowd (128 agents, 11 frames): METIS cuts it across the agents, so some agents lie wholly
+  // outside the region (in the long scene above it cuts across time and every agent is touched somewhere).
+  const CrowdMotion crowd = test::marching_grid(8, 16, 11, 1.0, 1.2, 0.1, 0.3, 0.2);
+  Request request;
+  request.drags = {hold(0, 0), hold(-1, -1)};
+  Drag d = hold(6, 6);
+  d.selection.agents = {100, 101, 102};
+  d.offset = {0.8, 0.4};
+  request.drags.push_back(d);
+  const Options options = local_options(8, 0);
+  const Result result = edit_group_motion(crowd, options, request);
+  LocalEditor local(crowd, options, request);
+  (void)local.deform(request);
+  const Clip& clip = local.graph().clip;
+  std::vector<char> touched(clip.agent_count(), 0);
+  for (int v : local.region()) touched[static_cast<std::size_t>(v) % clip.agent_count()] = 1;
+  CHECK(result.report.region_vertices == local.region().size());
+  std::size_t untouched_agents = 0;
+  for (std::size_t j = 0; j < clip.agent_count(); ++j) {
+    if (touched[j]) continue;
+    ++untouched_agents;
+    for (std::size_t f = 0; f < crowd.frame_count(); ++f) {
+      CHECK(std::memcmp(result.crowd.position(f, j).data(), crowd.position(f, clip.agents[j]).data(), 3 * sizeof(double)) == 0);
+    }
+  }
+  CHECK(untouched_agents > clip.agent_count() / 2);
+  // The dragged agents did move.
+  const Eigen::Vector3d moved = result.crowd.position(6, 0) - crowd.position(6, 0);
+  CHECK((moved.head<2>() - Eigen::Vector2d(0.8, 0.4)).norm() < rounding);
+}
+
+TEST_CASE("a wider halo solves more parts and comes closer to the global edit") {
+  const CrowdMotion crowd = scene();
+  const Request request = corner_drag({1.5, -0.8});
+  Editor editor(crowd, local_options(0, 0), request);
+  const Positions global = editor.deform(request);
+  std::size_t last_size = 0;
+  double last_gap = 1e9;
+  for (int halo : {0, 1, 2}) {
+    LocalEditor local(crowd, local_options(16, halo), request);
+    const Positions got = local.deform(request);
+    const double gap = (got - global).cwiseAbs().maxCoeff();
+    INFO("halo " << halo << ": " << local.region().size() << " vertices, gap " << gap);
+    CHECK(local.region().size() > last_size);
+    CHECK(gap <= last_gap + rounding);
+    last_size = local.region().size();
+    last_gap = gap;
+  }
+}
+
+TEST_CASE("drags of the same handles reuse the region's factorisations") {
+  const CrowdMotion crowd = scene();
+  LocalEditor local(crowd, local_options(12, 1), corner_drag({0.5, 0}));
+  (void)local.deform(corner_drag({0.5, 0}));
+  const int factorizations = local.report().factorizations;
+  CHECK(factorizations == 2);  // step 1 and step 2
+  CHECK(local.report().regions_built == 1);
+  const Positions second = local.deform(corner_drag({2.0, 1.0}));
+  CHECK(local.report().factorizations == factorizations);
+  CHECK(local.report().regions_built == 1);
+  // The reused factorisation gives what a fresh editor gives.
+  LocalEditor fresh(crowd, local_options(12, 1), corner_drag({2.0, 1.0}));
+  CHECK((fresh.deform(corner_drag({2.0, 1.0})) - second).cwiseAbs().maxCoeff() == 0.0);
+  // Another group: a new region; back to the first: the cache still holds it.
+  const Request other = corner_drag({0, 1}, {144, 145, 146, 147});
+  (void)local.deform(other);
+  CHECK(local.report().regions_built == 2);
+  (void)local.deform(corner_drag({1.0, 1.0}));
+  CHECK(local.report().regions_built == 2);
+  CHECK(local.report().factorizations == 4);
+  // With room for one region only, the first is dropped and rebuilt.
+  Options one = local_options(12, 1);
+  one.local.max_cached_regions = 1;
+  LocalEditor small(crowd, one, corner_drag({0.5, 0}));
+  (void)small.deform(corner_drag({0.5, 0}));
+  (void)small.deform(other);
+  (void)small.deform(corner_drag({0.5, 0}));
+  CHECK(small.report().regions_built == 3);
+  CHECK(small.report().factorizations == 6);
+}
+
+TEST_CASE("an edit that moves nothing solves nothing, and commit makes the result current") {
+  const CrowdMotion crowd = scene();
+  LocalEditor local(crowd, local_options(12, 0), corner_drag({0, 0}));
+  const Positions same = local.deform(corner_drag({0, 0}));
+  CHECK(local.region().empty());
+  CHECK(local.report().regions_built == 0);
+  CHECK(same == local.graph().clip.positions);
+
+  const Positions first = local.deform(corner_drag({1.0, 0.5}));
+  local.commit();
+  CHECK(local.current() == first);
+  // A second edit elsewhere: the first edit's vertices outside the new region stay as committed.
+  const Request far = corner_drag({0, 1}, {144, 145, 146, 147});
+  const Positions second = local.deform(far);
+  std::vector<char> inside(static_cast<std::size_t>(second.rows()), 0);
+  for (int v : local.region()) inside[static_cast<std::size_t>(v)] = 1;
+  for (Eigen::Index v = 0; v < second.rows(); ++v) {
+    if (!inside[static_cast<std::size_t>(v)] && !same_bits(second.row(v), first.row(v))) FAIL("vertex " << v << " moved");
+  }
+  // The second request holds agents 100..103 at their input positions at frame 30 only if they are in it: they
+  // are not, so the corner keeps its committed drag.
+  const Clip& clip = local.graph().clip;
+  const Eigen::Index v = clip.vertex(static_cast<std::size_t>(clip.sample_of_frame(30)), 0);
+  CHECK((second.row(v) - clip.positions.row(v) - Eigen::RowVector2d(1.0, 0.5)).norm() < rounding);
+}
+
+TEST_CASE("a general constraint reaches its part and is met") {
+  const CrowdMotion crowd = scene();
+  Request request = corner_drag({0, 0});
+  request.constraints.push_back(Velocity{.agent = 140, .frame = 20, .velocity = {0.5, 1.0}});
+  LocalEditor local(crowd, local_options(12, 0), request);
+  const Positions got = local.deform(request);
+  REQUIRE_FALSE(local.region().empty());
+  const Clip& clip = local.graph().clip;
+  const std::size_t j = static_cast<std::size_t>(clip.agent_of_id(140));
+  const auto s0 = static_cast<std::size_t>(clip.sample_of_frame(20)), s1 = static_cast<std::size_t>(clip.sample_of_frame(21));
+  const Eigen::RowVector2d velocity = (got.row(clip.vertex(s1, j)) - got.row(clip.vertex(s0, j))) / (clip.times[s1] - clip.times[s0]);
+  CHECK((velocity - Eigen::RowVector2d(0.5, 1.0)).norm() < 1e-6);
+  CHECK(local.report().max_constraint_residual < 1e-8);
+}
+
+TEST_CASE("local options out of range are ConfigErrors naming the key") {
+  const CrowdMotion crowd = scene();
+  const Request request = corner_drag({1, 0});
+  CHECK_THROWS_WITH(LocalEditor(crowd, local_options(0, 0), request), Contains("local.parts 0"));
+  CHECK_THROWS_WITH(LocalEditor(crowd, local_options(-1, 0), request), Contains("local.parts -1"));
+  CHECK_THROWS_WITH(LocalEditor(crowd, local_options(100000, 0), request), Contains("local.parts 100000"));
+  CHECK_THROWS_WITH(LocalEditor(crowd, local_options(4, -2), request), Contains("local.halo -2"));
+  Options o = local_options(4, 0);
+  o.local.max_cached_regions = 0;
+  CHECK_THROWS_WITH(LocalEditor(crowd, o, request), Contains("local.max_cached_regions"));
+}
