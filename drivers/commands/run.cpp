@@ -20,6 +20,10 @@
 //
 // Pipeline keys: step, name, input, inputs, job, output. A failing step stops the run; files already written by
 // earlier steps stay (each is complete: files are written atomically), the failing step leaves nothing.
+//
+// Batch: `throng run A.yaml B.yaml jobs/` runs every job (folders: their *.yaml, *.yml) spread over the MPI
+// ranks; a failing job does not stop the others; a summary lists them (drivers/batch.h).
+#include "../batch.h"
 #include "factories.h"
 
 #include <throng/core/errors.h>
@@ -40,11 +44,26 @@ class RunCommand final : public Command {
   std::string name() const override { return "run"; }
   std::string summary() const override { return "Run a pipeline of steps (import, sketch, edit, ..., plot) from a YAML job"; }
 
-  void setup(CLI::App& app) override { app.add_option("job", job_path_, "Pipeline job (.yaml)")->required(); }
+  void setup(CLI::App& app) override {
+    app.add_option("job", job_paths_, "Pipeline job (.yaml); several jobs or folders of them run as a batch over the MPI ranks")->required();
+  }
 
   void run(Context& context) override {
-    const ConfigNode job = context.load_job(job_path_);
-    if (context.print_config_if_asked(job.yaml())) return;
+    if (job_paths_.size() == 1 && !std::filesystem::is_directory(job_paths_.front())) {
+      if (auto report = run_pipeline(job_paths_.front(), context)) context.print(*report);
+      return;
+    }
+    // A batch (drivers/batch.h): several jobs or folders, spread over the MPI ranks, failures collected.
+    if (context.global.print_config) throw ConfigError("--print-config takes one job file, not a batch");
+    const auto jobs = expand_jobs(job_paths_);
+    finish_batch(run_batch(jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, context); }, context), context);
+  }
+
+ private:
+  /// Runs one pipeline and returns its report (nullopt after --print-config).
+  std::optional<Report> run_pipeline(const std::filesystem::path& job_path, Context& context) {
+    const ConfigNode job = context.load_job(job_path);
+    if (context.print_config_if_asked(job.yaml())) return std::nullopt;
     const std::vector<ConfigNode> steps = job.at("steps").elements();
     if (steps.empty()) job.at("steps").fail("the pipeline has no steps");
     for (const ConfigNode& step : steps) {
@@ -81,7 +100,7 @@ class RunCommand final : public Command {
 
       // The step's own keys: the job file's, overridden by the inline ones, without the pipeline keys.
       YAML::Node own(YAML::NodeType::Map);
-      std::string source = job_path_.string();
+      std::string source = job_path.string();
       if (auto j = step.find("job")) {
         const std::filesystem::path path = j->as_string();
         const ConfigNode file = ConfigNode::load_file(path);
@@ -123,7 +142,7 @@ class RunCommand final : public Command {
         for (const CrowdFile* c : inputs) sources.push_back(&c->provenance);
         const Provenance made = result->crowd.provenance;
         sources.push_back(&made);
-        result->crowd.provenance = context.provenance(job.yaml(), {job_path_.string()}, sources);
+        result->crowd.provenance = context.provenance(job.yaml(), {job_path.string()}, sources);
         write_crowd_file(*output, result->crowd, result->extra);
         ++written;
         context.info(label + ": wrote " + output->string());
@@ -132,13 +151,12 @@ class RunCommand final : public Command {
       last = std::move(result->crowd);
     }
     Report r;
-    r["job"] = job_path_.string();
+    r["job"] = job_path.string();
     r["steps"] = steps.size();
     r["crowd_files_written"] = written;
-    context.print(r);
+    return r;
   }
 
- private:
   Command* find(const std::string& which) const {
     for (Command* c : commands_) {
       if (c->name() == which) return c;
@@ -147,7 +165,7 @@ class RunCommand final : public Command {
   }
 
   std::vector<Command*> commands_;
-  std::filesystem::path job_path_;
+  std::vector<std::filesystem::path> job_paths_;
 };
 
 }  // namespace

@@ -17,6 +17,7 @@ namespace {
 bool initialized_by_us = false;   // we called MPI_Init_thread (so we call MPI_Finalize)
 bool petsc_started = false;       // we called PetscInitialize
 bool finalized = false;
+bool independent_ranks = false;   // PETSc on MPI_COMM_SELF (use_ranks_independently)
 std::once_flag init_once;
 
 void check(int code, const char* call) {
@@ -50,6 +51,7 @@ void initialize() {
   PetscBool petsc_up = PETSC_FALSE;
   PetscInitialized(&petsc_up);
   if (!petsc_up) {
+    if (independent_ranks) PETSC_COMM_WORLD = MPI_COMM_SELF;
     if (PetscInitializeNoArguments() != 0) throw NumericalError("PETSc: PetscInitialize failed");
     petsc_started = true;
     linalg::petsc::install_error_handler();
@@ -152,6 +154,23 @@ bool launched_by_mpiexec() noexcept {
 void ensure_initialized() {
   if (finalized) throw NumericalError("MPI was already finalised: it cannot be started again in this process");
   std::call_once(init_once, initialize);
+}
+
+void use_ranks_independently() {
+  if (is_initialized() && !independent_ranks) {
+    int ranks = 1;
+    check(MPI_Comm_size(MPI_COMM_WORLD, &ranks), "MPI_Comm_size");
+#ifdef THRONG_HAVE_PETSC
+    PetscBool petsc_up = PETSC_FALSE;
+    PetscInitialized(&petsc_up);
+    if (petsc_up && ranks > 1) {
+      throw NumericalError("MPI: PETSc already runs across " + std::to_string(ranks) +
+                           " ranks; independent ranks must be asked for before any solve");
+    }
+#endif
+  }
+  independent_ranks = true;
+  if (launched_by_mpiexec()) ensure_initialized();
 }
 
 bool is_initialized() noexcept {
