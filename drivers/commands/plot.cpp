@@ -19,6 +19,25 @@ void bind(OptionBinder& b, PlotOptions& o) {
   b.field("obstacles", o.obstacles);
 }
 
+/// The view of 3-D crowds: top (x, y; the default), front (x, z: looking north, +y) or side (y, z: looking
+/// west, −x). Front and side views map the chosen axes onto the picture's and leave the ground-plane scene out.
+void bind_view(OptionBinder& b, std::string& view) { b.choice("view", view, {"top", "front", "side"}); }
+
+CrowdFile projected(const CrowdFile& file, const std::string& view) {
+  CrowdFile out = file;
+  if (view == "top") return out;
+  const int u = view == "front" ? 0 : 1;
+  for (std::size_t k = 0; k + 2 < out.motion.positions.size(); k += 3) {
+    const double a = file.motion.positions[k + static_cast<std::size_t>(u)], z = file.motion.positions[k + 2];
+    out.motion.positions[k] = a;
+    out.motion.positions[k + 1] = z;
+    out.motion.positions[k + 2] = 0.0;
+  }
+  out.motion.velocities.clear();
+  out.scene = Scene{};
+  return out;
+}
+
 /// Draws `main` over `underneath` (each in grey, dashed): the before/after picture of an edit.
 void plot(const std::filesystem::path& output, const std::vector<std::pair<const CrowdFile*, std::string>>& underneath,
           const CrowdFile& main, const std::string& main_label, PlotOptions options) {
@@ -46,6 +65,8 @@ class PlotCommand final : public Command {
     app.add_option("--title", options_.title, "Title (default: the file name)");
     app.add_flag("!--no-trajectories", options_.trajectories, "Draw agents only");
     app.add_flag("!--no-obstacles", options_.obstacles, "Leave obstacles out");
+    app.add_option("--view", view_, "3-D crowds: top (x, y), front (x, z) or side (y, z)")
+        ->capture_default_str()->check(CLI::IsMember({"top", "front", "side"}));
   }
 
   void run(Context& context) override {
@@ -54,14 +75,15 @@ class PlotCommand final : public Command {
     if (!overlay_.empty()) effective["overlay"] = overlay_.string();
     OptionWriter writer(effective);
     bind(writer, options_);
+    bind_view(writer, view_);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
 
-    const CrowdFile file = read_crowd_file(input_);
+    const CrowdFile file = projected(read_crowd_file(input_), view_);
     CrowdFile before;
     std::vector<std::pair<const CrowdFile*, std::string>> underneath;
     if (!overlay_.empty()) {
-      before = read_crowd_file(overlay_);
+      before = projected(read_crowd_file(overlay_), view_);
       underneath.emplace_back(&before, overlay_.filename().string());
     }
     plot(output_, underneath, file, input_.filename().string(), options_);
@@ -74,13 +96,18 @@ class PlotCommand final : public Command {
   std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs, Context& context) override {
     const std::filesystem::path output = step.at("output").as_string();
     PlotOptions options;
+    std::string view = "top";
     OptionReader reader(step);
     bind(reader, options);
+    bind_view(reader, view);
     step.finish();
     if (inputs.empty()) step.fail("plot needs a crowd: no earlier step made one and no input is named");
+    std::vector<CrowdFile> views;
+    views.reserve(inputs.size());
+    for (const CrowdFile* c : inputs) views.push_back(projected(*c, view));
     std::vector<std::pair<const CrowdFile*, std::string>> underneath;
-    for (std::size_t i = 0; i + 1 < inputs.size(); ++i) underneath.emplace_back(inputs[i], "input " + std::to_string(i + 1));
-    plot(output, underneath, *inputs.back(), output.stem().string(), options);
+    for (std::size_t i = 0; i + 1 < inputs.size(); ++i) underneath.emplace_back(&views[i], "input " + std::to_string(i + 1));
+    plot(output, underneath, views.back(), output.stem().string(), options);
     context.info("wrote " + output.string());
     return std::nullopt;
   }
@@ -91,6 +118,7 @@ class PlotCommand final : public Command {
   std::filesystem::path output_;
   std::filesystem::path overlay_;
   PlotOptions options_;
+  std::string view_ = "top";
 };
 
 }  // namespace

@@ -254,6 +254,29 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
       }
       svg.raw("\"/>\n");
     }
+    // Formation edges (the file's connectivity) between the agents at each drawn frame, under the discs.
+    if (layer.draw_agents && !layer.file->formation_edges.empty()) {
+      for (long f : options.frames) {
+        const long frame = f < 0 ? static_cast<long>(T) + f : f;
+        if (frame < 0 || frame >= static_cast<long>(T)) continue;
+        svg.raw("<g stroke=\"#707070\" stroke-linecap=\"round\"");
+        svg.attr("stroke-width", std::max(0.4, 0.6 * line_width));
+        svg.attr("opacity", 0.6 * layer.opacity);
+        svg.raw(">\n");
+        for (const auto& e : layer.file->formation_edges) {
+          const auto a = static_cast<std::size_t>(e[0]), b = static_cast<std::size_t>(e[1]);
+          if (!m.present(static_cast<std::size_t>(frame), a) || !m.present(static_cast<std::size_t>(frame), b)) continue;
+          const auto p = m.position(static_cast<std::size_t>(frame), a), q = m.position(static_cast<std::size_t>(frame), b);
+          svg.raw("<line");
+          svg.attr("x1", v.px(p.x()));
+          svg.attr("y1", v.py(p.y()));
+          svg.attr("x2", v.px(q.x()));
+          svg.attr("y2", v.py(q.y()));
+          svg.raw("/>\n");
+        }
+        svg.raw("</g>\n");
+      }
+    }
     if (layer.draw_agents) {
       const std::size_t frames = options.frames.size();
       for (std::size_t k = 0; k < frames; ++k) {

@@ -93,6 +93,33 @@ TEST_CASE("every formation config runs and reads back with its keyframes hit") {
     CHECK_THAT(f.provenance.options, Contains("tension: 0.5") && Contains("reordering: greedy"));
     if (c.dimension == 3) CHECK(f.motion.position(0, 0).z() > 100);
   }
+
+  // The pictures: formation edges drawn at the keyframes; a 3-D crowd seen from the front (x, z).
+  const auto airshow = dir / "formation-airshow.yaml.h5";
+  REQUIRE(run("--quiet plot " + airshow.string() + " -o " + (dir / "front.svg").string() + " --view front --frames 0,-1") == 0);
+  REQUIRE(run("--quiet plot " + airshow.string() + " -o " + (dir / "top.svg").string() + " --frames 0,-1") == 0);
+  auto text = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  CHECK_THAT(text(dir / "front.svg"), Contains("<line"));
+  // The vertical spread of the drawn discs (frames 0 and last): letters stand up in the front view (120 m
+  // tall) and lie flat from above (every plane at y = 0 at those frames).
+  auto disc_spread = [&](const std::filesystem::path& p) {
+    const std::string svg = text(p);
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) {
+      const std::size_t cy = svg.find("cy=\"", at);
+      const double y = std::stod(svg.substr(cy + 4));
+      lo = std::min(lo, y);
+      hi = std::max(hi, y);
+    }
+    return hi - lo;
+  };
+  CHECK(disc_spread(dir / "front.svg") > 50);
+  CHECK(disc_spread(dir / "top.svg") < 1);
+  CHECK(run("--quiet plot " + airshow.string() + " -o " + (dir / "bad.svg").string() + " --view diagonal") != 0);
+  CHECK_FALSE(std::filesystem::exists(dir / "bad.svg"));
 }
 
 TEST_CASE("the hierarchy config's groups are stored and used as species") {

@@ -243,3 +243,26 @@ TEST_CASE("job errors: data problems are InputErrors with the line, syntax and o
     CHECK_THROWS_AS(formation::animate_formation(job.problem, job.options), InputError);
   }
 }
+
+TEST_CASE("the result lists each keyframe's frame and graph; the crowd's formation edges are those kept throughout") {
+  // A square with a centre, then the same turned by 45° and spread: Delaunay joins the centre to every corner
+  // and the corners around; the job removes one rim edge in keyframe 1 only and adds a diagonal everywhere.
+  const FormationJob job = read_formation_job(yaml(
+      "keyframes:\n"
+      "  - {time: 0, positions: [[0, 0], [2, 0], [2, 2], [0, 2], [1, 1]]}\n"
+      "  - {time: 1, positions: [[10, 0], [13, 3], [10, 6], [7, 3], [10, 3]], edits: {remove: [[0, 1]]}}\n"
+      "edits: {add: [[0, 2]]}\n"));
+  const formation::Result r = formation::animate_formation(job.problem, job.options);
+  CHECK(r.keyframe_frames == std::vector<std::size_t>{0, 30});
+  using P = formation::Pair;
+  const std::vector<P> rim_and_spokes{{0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {2, 3}, {2, 4}, {3, 4}};
+  CHECK(r.keyframe_edges[0] == rim_and_spokes);
+  const std::vector<P> without_01{{0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {2, 3}, {2, 4}, {3, 4}};
+  CHECK(r.keyframe_edges[1] == without_01);
+  const CrowdFile crowd = formation_crowd(r);
+  REQUIRE(crowd.formation_edges.size() == without_01.size());
+  for (std::size_t e = 0; e < without_01.size(); ++e) {
+    CHECK(crowd.formation_edges[e][0] == without_01[e][0]);
+    CHECK(crowd.formation_edges[e][1] == without_01[e][1]);
+  }
+}

@@ -3,6 +3,7 @@
 #include <throng/io/formation_shapes.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -374,8 +375,15 @@ YAML::Node effective_formation_job(const FormationJob& job) {
 CrowdFile formation_crowd(const formation::Result& result) {
   CrowdFile file;
   file.motion = result.motion;
-  if (!result.keyframe_edges.empty())
-    for (const Pair& e : result.keyframe_edges.front()) file.formation_edges.push_back({e[0], e[1]});
+  // The neighbour relations kept through every keyframe: the edges in all keyframes' graphs (sorted lists).
+  std::vector<Pair> kept = result.keyframe_edges.empty() ? std::vector<Pair>{} : result.keyframe_edges.front();
+  for (std::size_t k = 1; k < result.keyframe_edges.size(); ++k) {
+    std::vector<Pair> both;
+    std::set_intersection(kept.begin(), kept.end(), result.keyframe_edges[k].begin(), result.keyframe_edges[k].end(),
+                          std::back_inserter(both));
+    kept = std::move(both);
+  }
+  for (const Pair& e : kept) file.formation_edges.push_back({e[0], e[1]});
   return file;
 }
 

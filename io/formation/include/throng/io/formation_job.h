@@ -98,7 +98,8 @@ void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd);
 /// The job with every option at its effective value (for --print-config and the output's provenance).
 [[nodiscard]] YAML::Node effective_formation_job(const FormationJob& job);
 
-/// The crowd of a finished run: motion, and formation edges (keyframe 0's graph between individuals).
+/// The crowd of a finished run: motion, and as formation edges the pairs of individuals that are graph
+/// neighbours in every keyframe (the relations the formation keeps; each keyframe's own graph is in the method data).
 [[nodiscard]] CrowdFile formation_crowd(const formation::Result& result);
 
 /// Writes the method data under /parameters/throng/formation:
