@@ -9,6 +9,8 @@ std::unique_ptr<Command> make_import_command();
 std::unique_ptr<Command> make_export_command();
 std::unique_ptr<Command> make_edit_command();
 std::unique_ptr<Command> make_formation_command();
+std::unique_ptr<Command> make_tile_command();
+std::unique_ptr<Command> make_check_tiling_command();
 std::unique_ptr<Command> make_info_command();
 std::unique_ptr<Command> make_plot_command();
 std::unique_ptr<Command> make_sketch_command();

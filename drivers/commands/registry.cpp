@@ -10,6 +10,8 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_sketch_command());
   c.push_back(make_edit_command());
   c.push_back(make_formation_command());
+  c.push_back(make_tile_command());
+  c.push_back(make_check_tiling_command());
   c.push_back(make_export_command());
   c.push_back(make_info_command());
   c.push_back(make_plot_command());

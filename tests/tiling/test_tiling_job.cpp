@@ -1,0 +1,175 @@
+// The tiling job file (io/tiling), the tiling data in the crowd file read back for check-tiling, and patches
+// built from the real pedestrian data.
+#include <catch2/catch.hpp>
+
+#include <throng/core/errors.h>
+#include <throng/io/crowd_file.h>
+#include <throng/io/real_dataset.h>
+#include <throng/io/tiling_job.h>
+#include <throng/tiling/construct.h>
+
+#include "test_paths.h"
+
+#include <cstring>
+
+using namespace throng;
+using namespace throng::tiling;
+
+namespace {
+
+const char* small_job = R"(
+region: {min: [0, 0], max: [8, 8], time: [0, 8], periodic: [true, false, false]}
+library:
+  builtin: [locomotion, meet]
+  builtin_options: {walk_speed: 1.2}
+  preferences: {meet: 3}
+keyframes:
+  - {patch: meet, position: [4, 4], angle: 30, time: 4}
+sources: [{center: [1, 1], radius: 0.5, time: [0, 4]}]
+preference:
+  position: {target: [4, 4], sigma: 16}
+  direction: {target: 90, sigma: 900}
+  labels: {friendly: 1}
+characters: 12
+chains: 2
+limits: {bend: 8}
+annealing: {max_failures: 300}
+search: {max_steps: 20000}
+output: {frame_rate: 5, repeat: [2, 1, 1]}
+)";
+
+TilingJob parse(const std::string& text) { return read_tiling_job(ConfigNode::parse(text, "job.yaml")); }
+
+}  // namespace
+
+TEST_CASE("a tiling job reads every part and its effective form reads back the same") {
+  const TilingJob job = parse(small_job);
+  CHECK(job.library.types.size() == 12);
+  CHECK(job.library.types[job.library.find("meet")].preference == 3.0);
+  REQUIRE(job.keyframes.size() == 1);
+  CHECK(job.keyframes[0].type == job.library.find("meet"));
+  CHECK(std::abs(job.keyframes[0].transform.angle - 30 * M_PI / 180) < 1e-12);
+  CHECK(job.environment.sources.size() == 1);
+  CHECK(job.options.preference.position);
+  CHECK(std::abs(job.options.preference.direction->sigma_rad2 - 900 * std::pow(M_PI / 180, 2)) < 1e-12);
+  CHECK(std::abs(job.options.limits.bend_rad - 8 * M_PI / 180) < 1e-12);
+  CHECK(job.layout.repeat == std::array<int, 3>{2, 1, 1});
+  const std::string once = to_yaml_text(effective_tiling_job(job));
+  const std::string twice = to_yaml_text(effective_tiling_job(parse(once)));
+  CHECK(once == twice);
+}
+
+TEST_CASE("tiling job errors are configuration errors naming the place") {
+  const auto fails = [](const std::string& text, const std::string& needle) {
+    try {
+      (void)parse(text);
+    } catch (const ConfigError& e) {
+      INFO(e.what());
+      CHECK(std::string(e.what()).find(needle) != std::string::npos);
+      return;
+    }
+    FAIL("no ConfigError for: " << text);
+  };
+  fails("library: {builtin: [walk]}\n", "region");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [moonwalk]}\n", "moonwalk");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nchans: 2\n", "chans");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nkeyframes: [{patch: bow, position: [1, 1], time: 1}]\n", "bow");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\noutput: {repeat: [2, 1, 1]}\n", "periodic");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nmatch: {distance: -1}\n", "distance");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {}\n", "builtin");
+}
+
+TEST_CASE("the tiling data written with the characters reads back bit for bit and checks perfect") {
+  TilingJob job = parse(small_job);
+  NoProgress quiet;
+  const TilingResult result = tile(job.library, job.environment, job.keyframes, job.options, quiet);
+  REQUIRE(result.report.perfect());
+  const Characters laid = lay_out(job.library, result.tiling, *job.environment.scene.region, job.layout);
+  CrowdFile crowd;
+  crowd.motion = laid.motion;
+  crowd.scene = job.environment.scene;
+  const auto path = test::scratch_dir("tiling_job") / "tiling.h5";
+  write_crowd_file(path, crowd, [&](const h5::Group& g) {
+    write_tiling_data(g, job.library, result, job.environment, check_options_for(job.options), laid);
+  });
+  const TilingData back = read_tiling_data(path);
+  REQUIRE(back.tiling.instances.size() == result.tiling.instances.size());
+  REQUIRE(back.tiling.connections.size() == result.tiling.connections.size());
+  for (std::size_t i = 0; i < back.tiling.instances.size(); ++i) {
+    const Instance& a = back.tiling.instances[i];
+    const Instance& b = result.tiling.instances[i];
+    CHECK(a.type == b.type);
+    CHECK(a.keyframed == b.keyframed);
+    for (std::size_t f = 0; f < a.paths.size(); ++f) {
+      CHECK(std::memcmp(a.paths[f].times.data(), b.paths[f].times.data(), a.paths[f].times.size() * sizeof(double)) == 0);
+      CHECK(a.paths[f].positions == b.paths[f].positions);
+    }
+  }
+  CHECK(back.library.types.size() == job.library.types.size());
+  CHECK(back.environment.sources.size() == 1);
+  CHECK(back.check.limits.bend_rad == job.options.limits.bend_rad);
+  const CheckReport c = check_tiling(back.library, back.tiling, back.environment, back.check);
+  CHECK(c.perfect());
+  // A file without tiling data is an input error.
+  const auto plain = test::scratch_dir("tiling_job") / "plain.h5";
+  write_crowd_file(plain, crowd);
+  CHECK_THROWS_AS(read_tiling_data(plain), InputError);
+}
+
+TEST_CASE("patches from two synthetic walkers: a pair episode tied at its closest approach, and single pieces") {
+  // Two people walk toward each other along y = ±0.4 at 1.2 m/s, pass at t = 5 s (0.8 m apart), sampled at
+  // 2.5 Hz like the recorded data.
+  CrowdMotion m = CrowdMotion::with_shape(26, 2);
+  for (std::size_t f = 0; f < 26; ++f) {
+    const double t = 0.4 * static_cast<double>(f);
+    m.times[f] = t;
+    m.position(f, 0) = Eigen::Vector3d(-6 + 1.2 * t, 0.4, 0);
+    m.position(f, 1) = Eigen::Vector3d(6 - 1.2 * t, -0.4, 0);
+  }
+  RealPatchOptions o;
+  o.reaction_min_mps2 = 0;  // straight walkers do not react: keep the episode anyway
+  const PatchLibrary lib = patches_from_trajectories(m, o);
+  std::size_t pairs = 0, singles = 0;
+  for (const PatchType& t : lib.types) {
+    if (t.character_count() == 2) {
+      ++pairs;
+      CHECK(!t.constraints.empty());
+      CHECK(t.label == "pair");
+    } else {
+      ++singles;
+    }
+  }
+  CHECK(pairs == 1);
+  CHECK(singles >= 2);
+  // Nothing to make patches from: an input error saying why.
+  CHECK_THROWS_AS(patches_from_trajectories(CrowdMotion::with_shape(3, 1), o), InputError);
+}
+
+TEST_CASE("patches from the real zara01 data tile a box perfectly") {
+  const auto dir = test::real_data_dir();
+  if (dir.empty()) {
+    WARN("no ../shared/data/real: skipped");
+    return;
+  }
+  const CrowdFile data = import_real_dataset(dir / "zara01", RealDatasetOptions{});
+  RealPatchOptions o;
+  o.max_pair_patches = 6;
+  o.max_single_patches = 6;
+  PatchLibrary lib = patches_from_trajectories(data.motion, o);
+  std::size_t pairs = 0;
+  for (const PatchType& t : lib.types) pairs += t.character_count() == 2;
+  CHECK(pairs >= 1);
+  merge_into(lib, builtin_library({"walk", "turn_left", "turn_right", "stop", "start", "wait"}));
+  Environment env;
+  env.scene.region = Region{{0, 0}, {8, 8}, 0, 8, {false, false, false}};
+  Options opts;
+  opts.annealing.max_failures = 300;
+  opts.search.max_steps = 20000;
+  NoProgress quiet;
+  const TilingResult r = tile(lib, env, {}, opts, quiet);
+  CHECK(r.report.perfect());
+  CHECK(check_tiling(lib, r.tiling, env, check_options_for(opts)).perfect());
+  std::size_t real_used = 0;
+  for (const Instance& i : r.tiling.instances) real_used += lib.types[i.type].name.rfind("real_", 0) == 0;
+  CHECK(real_used > 0);
+}
