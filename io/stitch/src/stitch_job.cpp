@@ -94,6 +94,7 @@ StitchedCrowds stitch_crowds(const std::vector<const CrowdFile*>& inputs, const 
       throw NumericalError(which + e.what());
     }
     s.joint_frames.push_back(r.report.frames_first - 1);
+    s.joint_ids.push_back(r.crowd.ids);
     s.crowd.motion = std::move(r.crowd);
     r.crowd = CrowdMotion{};
     s.joints.push_back(std::move(r));
@@ -111,8 +112,9 @@ void write_stitch_data(const h5::Group& throng_parameters, const StitchedCrowds&
   for (std::size_t k = 0; k < stitched.joints.size(); ++k) {
     const stitch::Result& r = stitched.joints[k];
     const h5::Group j = g.create_group("joint_" + std::to_string(k + 1));
-    // The result's agents are the clip-so-far's: the output ids (a later joint keeps them).
-    j.write("first_ids", stitched.crowd.motion.ids, {stitched.crowd.motion.ids.size()});
+    // The joint's agents are the clip-so-far's, with its ids (a later joint may leave some out).
+    const std::vector<std::int64_t>& first_ids = stitched.joint_ids[k];
+    j.write("first_ids", first_ids, {first_ids.size()});
     j.write("second_ids", r.second_ids, {r.second_ids.size()});
     j.set_attribute("frame", static_cast<std::int64_t>(stitched.joint_frames[k]));
     j.set_attribute("rotation", r.report.rotation);

@@ -3,6 +3,7 @@
 #include <throng/io/transform_job.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -29,7 +30,10 @@ double finite(const ConfigNode& node) {
 TransformJob read_transform_job(const ConfigNode& job) {
   TransformJob t;
   auto& o = t.options;
-  if (auto r = job.find("rotate")) o.rotation = finite(*r) * std::numbers::pi / 180.0;
+  if (auto r = job.find("rotate")) {
+    t.rotate_degrees = finite(*r);
+    o.rotation = t.rotate_degrees * std::numbers::pi / 180.0;
+  }
   if (auto p = job.find("pivot")) o.pivot = point(*p);
   const auto translate = job.find("translate");
   const auto place_at = job.find("place_at");
@@ -50,7 +54,11 @@ TransformJob read_transform_job(const ConfigNode& job) {
     if (!(std::isfinite(o.frame_rate_hz) && o.frame_rate_hz >= 0)) r->fail("frame_rate: expected a rate > 0 in Hz, or 0 to keep the frames");
   }
   if (auto i = job.find("id_offset")) o.id_offset = i->as_int();
-  if (auto s = job.find("species")) o.species = static_cast<std::int32_t>(s->as_int());
+  if (auto s = job.find("species")) {
+    const std::int64_t v = s->as_int();
+    if (v < 0 || v > std::numeric_limits<std::int32_t>::max()) s->fail("species " + std::to_string(v) + ": expected an integer in [0, 2147483647]");
+    o.species = static_cast<std::int32_t>(v);
+  }
   job.finish();
   return t;
 }
@@ -58,7 +66,7 @@ TransformJob read_transform_job(const ConfigNode& job) {
 YAML::Node effective_transform_job(const TransformJob& t) {
   YAML::Node out(YAML::NodeType::Map);
   const auto& o = t.options;
-  out["rotate"] = yaml_number(o.rotation * 180.0 / std::numbers::pi);
+  out["rotate"] = yaml_number(t.rotate_degrees);
   if (o.pivot) out["pivot"] = flow_numbers({o.pivot->x(), o.pivot->y()});
   if (t.place_at) out["place_at"] = flow_numbers({t.place_at->x(), t.place_at->y()});
   else out["translate"] = flow_numbers({o.translation.x(), o.translation.y()});

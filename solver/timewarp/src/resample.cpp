@@ -63,7 +63,12 @@ double frame_rate(const CrowdMotion& crowd) {
   for (std::size_t i = 0; i + 1 < crowd.frame_count(); ++i) intervals[i] = crowd.times[i + 1] - crowd.times[i];
   const auto middle = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
   std::nth_element(intervals.begin(), middle, intervals.end());
-  return 1.0 / *middle;
+  const double rate = 1.0 / *middle;
+  // Frame times k/24 stored as doubles give intervals off by ~1e-13 relative, so the median says 23.99999999999983
+  // Hz and every output time would drift off the k/24 grid. Rates are set by people in whole mHz (24, 29.97, 2.5):
+  // a rate within 1e-9 relative of one is that rate.
+  const double snapped = std::round(rate * 1000.0) / 1000.0;
+  return std::abs(snapped - rate) <= 1e-9 * rate ? snapped : rate;
 }
 
 CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& knot_times, const std::vector<double>& times,

@@ -24,6 +24,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace throng {
@@ -41,6 +42,9 @@ struct StitchedCrowds {
   CrowdFile crowd;
   std::vector<stitch::Result> joints;
   std::vector<std::size_t> joint_frames;  ///< the output frame of each joint
+  /// Per joint, the ids of the clip so far that took part (agents absent somewhere in their clip are left out,
+  /// so a later joint may hold fewer agents than an earlier one); row k matches joints[k].second_ids.
+  std::vector<std::vector<std::int64_t>> joint_ids;
 };
 
 /// Stitches two or more clips in order. The scene is the first input's; provenance credits of every input are

@@ -27,6 +27,7 @@ namespace throng {
 
 struct TransformJob {
   stitch::TransformOptions options;          ///< rotation in radians here
+  double rotate_degrees = 0.0;               ///< the job's `rotate`, as given (printed back unrounded)
   std::optional<Eigen::Vector2d> place_at;   ///< replaces options.translation when given
   std::optional<double> start_time;          ///< replaces options.time_shift when given
 };

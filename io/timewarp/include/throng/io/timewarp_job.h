@@ -1,5 +1,5 @@
 // The time warp job (`throng timewarp DEFORMED.h5 --reference ORIGINAL.h5 -o OUT.h5`, or a `timewarp` step of
-// `throng run` with `inputs: [original, deformed]`) and the warp it stores under /parameters/throng/timewarp
+// `throng run` with `inputs: [deformed, original]`, the same order as on the command line) and the warp it stores under /parameters/throng/timewarp
 // (solver/timewarp/timewarp.h for the method and its decisions).
 //
 // Job keys (all optional; defaults shown):

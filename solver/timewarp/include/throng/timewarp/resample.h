@@ -13,7 +13,8 @@ namespace throng::timewarp {
 /// counts as `end`). Throws ConfigError for a rate that is not positive and finite, InputError for end < start.
 [[nodiscard]] std::vector<double> uniform_times(double start, double end, double rate_hz);
 
-/// The input's frame rate: 1 / the median frame interval (Hz). InputError for fewer than 2 frames.
+/// The input's frame rate: 1 / the median frame interval (Hz), snapped to whole mHz when within 1e-9 relative
+/// (stored times k/24 give 23.99999999999983). InputError for fewer than 2 frames.
 [[nodiscard]] double frame_rate(const CrowdMotion& crowd);
 
 /// The crowd at `times`. Each agent's x, y and z pass through a cubic spline over `knot_times` (one knot per frame

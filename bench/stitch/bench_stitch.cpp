@@ -1,0 +1,100 @@
+// Stitching at scale (issue 4): two 1,000-agent × 300-frame clips, one joint (the matching, the alignment, the
+// graph and one solve), at every frame and at every 4th; the exact matching alone; and the paper's town job
+// (configs/run-town.yaml) run end to end by the `throng` program.
+//
+// Run:   bench_stitch --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include "../../tests/graph/synthetic_crowd.h"
+
+#include <throng/stitch/stitch.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+using namespace throng;
+
+// G: a 25 × 40 block marching along a gentle arc; G′: another block (wider spacing, other jitter, turning the
+// other way) that starts near G's end — clips made apart, as stitching meets them.
+struct Clips {
+  CrowdMotion first, second;
+};
+
+const Clips& clips() {
+  static const Clips c = [] {
+    Clips k{test::marching_grid(25, 40, 300, 1.0, 1.2, 0.1, 0.05, 0.2, 5),
+            test::marching_grid(25, 40, 300, 1.2, 1.3, 0.1, -0.05, 0.2, 7)};
+    for (std::size_t f = 0; f < k.second.frame_count(); ++f) {
+      for (std::size_t a = 0; a < k.second.agent_count(); ++a) k.second.position(f, a).head<2>() += Eigen::Vector2d(35.0, 8.0);
+    }
+    return k;
+  }();
+  return c;
+}
+
+void stitch_two(benchmark::State& state) {
+  stitch::Options o;
+  o.sample_step = static_cast<std::size_t>(state.range(0));
+  o.matching = stitch::Matching::centred;
+  stitch::Report report;
+  for (auto _ : state) {
+    const stitch::Result r = stitch::stitch_clips(clips().first, clips().second, o);
+    report = r.report;
+    benchmark::DoNotOptimize(r.crowd.positions.data());
+  }
+  state.counters["unknowns"] = static_cast<double>(report.unknowns);
+  state.counters["matching_s"] = report.matching_seconds;
+  state.counters["graph_s"] = report.graph_seconds;
+  state.counters["precompute_s"] = report.precompute_seconds;
+  state.counters["solve_s"] = report.solve_seconds;
+  state.SetLabel(report.factorization);
+}
+BENCHMARK(stitch_two)->Arg(1)->Arg(4)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void matching_1000(benchmark::State& state) {
+  const CrowdMotion& g = clips().first;
+  const CrowdMotion& h = clips().second;
+  stitch::Points last(static_cast<Eigen::Index>(g.agent_count()), 2), first(static_cast<Eigen::Index>(h.agent_count()), 2);
+  for (std::size_t a = 0; a < g.agent_count(); ++a) last.row(static_cast<Eigen::Index>(a)) = g.position(g.frame_count() - 1, a).head<2>().transpose();
+  for (std::size_t a = 0; a < h.agent_count(); ++a) first.row(static_cast<Eigen::Index>(a)) = h.position(0, a).head<2>().transpose();
+  for (auto _ : state) benchmark::DoNotOptimize(stitch::match_boundary(last, first, stitch::Matching::centred).total_distance);
+}
+BENCHMARK(matching_1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The town job as a user runs it: the `throng` program in a scratch folder, the job's paths made absolute.
+void town_job(benchmark::State& state) {
+  const std::filesystem::path source = THRONG_SOURCE_DIR;
+  const std::filesystem::path data = source.parent_path() / "shared" / "data" / "real";
+  if (!std::filesystem::exists(data / "eth")) {
+    state.SkipWithError("../shared/data/real/eth not found: the town job needs it");
+    return;
+  }
+  std::ifstream in(source / "configs" / "run-town.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string job = text.str();
+  auto replace_all = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at = job.find(from); at != std::string::npos; at = job.find(from, at + to.size())) job.replace(at, from.size(), to);
+  };
+  replace_all("configs/", (source / "configs").string() + "/");
+  replace_all("../shared/data/real/", data.string() + "/");
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "throng_bench_town";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "town.yaml") << job;
+  const std::string command = "cd " + dir.string() + " && " + std::string(THRONG_PROGRAM) + " --quiet run town.yaml > /dev/null";
+  for (auto _ : state) {
+    if (std::system(command.c_str()) != 0) {
+      state.SkipWithError("throng run configs/run-town.yaml failed");
+      break;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(town_job)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+}  // namespace
