@@ -14,6 +14,11 @@ std::unique_ptr<Command> make_check_tiling_command();
 std::unique_ptr<Command> make_info_command();
 std::unique_ptr<Command> make_plot_command();
 std::unique_ptr<Command> make_sketch_command();
+std::unique_ptr<Command> make_split_command();
+std::unique_ptr<Command> make_merge_command();
+std::unique_ptr<Command> make_transform_command();
+std::unique_ptr<Command> make_stitch_command();
+std::unique_ptr<Command> make_timewarp_command();
 /// `throng run`: runs the other commands as steps (they must outlive it).
 std::unique_ptr<Command> make_run_command(std::vector<Command*> commands);
 

@@ -10,6 +10,11 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_sketch_command());
   c.push_back(make_edit_command());
   c.push_back(make_formation_command());
+  c.push_back(make_split_command());
+  c.push_back(make_merge_command());
+  c.push_back(make_transform_command());
+  c.push_back(make_stitch_command());
+  c.push_back(make_timewarp_command());
   c.push_back(make_tile_command());
   c.push_back(make_check_tiling_command());
   c.push_back(make_export_command());
