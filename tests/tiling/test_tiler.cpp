@@ -112,7 +112,7 @@ TEST_CASE("the tiler's results pass the independent checker") {
   }
 }
 
-TEST_CASE("the same seed gives the same tiling for 1 and 2 threads; another seed another") {
+TEST_CASE("the same seed gives the same tiling for 1 and 2 threads, another seed another") {
   const PatchLibrary lib = small_library();
   const Environment env = box(7, 7, 7);
   NoProgress quiet;
