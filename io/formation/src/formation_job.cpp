@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <iterator>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <sstream>
 

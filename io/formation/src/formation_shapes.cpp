@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 namespace throng {
 namespace {

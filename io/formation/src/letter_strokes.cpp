@@ -3,7 +3,6 @@
 // spells T, H, E, E, N, D with ten planes).
 #include <throng/io/formation_shapes.h>
 
-#include <array>
 #include <cctype>
 #include <utility>
 
