@@ -54,7 +54,15 @@ TEST_CASE("a tiling job reads every part and its effective form reads back the s
   CHECK(std::abs(job.options.preference.direction->sigma_rad2 - 900 * std::pow(M_PI / 180, 2)) < 1e-12);
   CHECK(std::abs(job.options.limits.bend_rad - 8 * M_PI / 180) < 1e-12);
   CHECK(job.layout.repeat == std::array<int, 3>{2, 1, 1});
-  const std::string once = to_yaml_text(effective_tiling_job(job));
+  const YAML::Node effective = effective_tiling_job(job);
+  CHECK(effective["chains"].as<int>() == 2);
+  CHECK(effective["characters"].as<int>() == 12);
+  CHECK(effective["limits"]["bend"].as<double>() == 8);
+  CHECK(effective["annealing"]["alpha"].as<double>() == 0.2);
+  CHECK(effective["output"]["repeat"][0].as<int>() == 2);
+  CHECK(effective["library"]["builtin_options"]["walk_speed"].as<double>() == 1.2);
+  CHECK(effective["region"]["periodic"][0].as<bool>());
+  const std::string once = to_yaml_text(effective);
   const std::string twice = to_yaml_text(effective_tiling_job(parse(once)));
   CHECK(once == twice);
 }

@@ -17,7 +17,7 @@ constexpr double deg = std::numbers::pi / 180.0;
 
 // Degrees in the file, radians in the options: a field that converts both ways.
 void degrees(OptionBinder& b, const char* key, double& radians, Range range) {
-  double d = radians / deg;
+  double d = std::round(radians / deg * 1e9) / 1e9;  // 15° stays 15, not 14.999999999999998
   b.field(key, d, range);
   radians = d * deg;
 }
@@ -305,24 +305,24 @@ TilingJob read_tiling_job(const ConfigNode& job) {
 }
 
 YAML::Node effective_tiling_job(const TilingJob& job) {
-  YAML::Node out;
+  YAML::Node out(YAML::NodeType::Map);  // a map before the writer holds it (yaml-cpp nodes share only then)
   TilingJob copy = job;
   OptionWriter writer(out);
   bind(writer, copy.options, copy.layout);
   write_scene(out, job.environment.scene);
-  YAML::Node lib;
+  YAML::Node lib(YAML::NodeType::Map);
   if (!job.builtin.empty()) {
     YAML::Node names(YAML::NodeType::Sequence);
     for (const std::string& n : job.builtin) names.push_back(n);
     names.SetStyle(YAML::EmitterStyle::Flow);
     lib["builtin"] = names;
-    YAML::Node bo;
+    YAML::Node bo(YAML::NodeType::Map);
     OptionWriter bw(bo);
     bind_builtin(bw, copy.builtin_options);
     lib["builtin_options"] = bo;
   }
   if (!job.real_dataset.empty()) {
-    YAML::Node ro;
+    YAML::Node ro(YAML::NodeType::Map);
     OptionWriter rw(ro);
     bind_real(rw, copy.real_options);
     ro["dataset"] = job.real_dataset;
