@@ -74,6 +74,7 @@ class MergeCommand final : public Command {
     flags_.value(app, "--span", "span", "overlap (the frames every crowd shares) | union (from the earliest start to the latest end)");
     flags_.value(app, "--on-id-clash", "on_id_clash", "shift (move a later crowd's ids above the earlier ones') | error");
     flags_.value(app, "--time-tolerance", "time_tolerance", "Seconds: frame times closer than this are one frame");
+    flags_.value(app, "--max-edge-length", "max_edge_length", "Metres: drop stored formation edges longer than this (0: keep all)");
   }
 
   void run(Context& context) override {

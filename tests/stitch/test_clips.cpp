@@ -107,6 +107,28 @@ TEST_CASE("two groups sharing a time span merge into one graph with formation ed
   MergeOptions strict;
   strict.on_id_clash = IdClash::error;
   CHECK_THROWS_WITH(merge(a, sa, b, sb, strict), Catch::Contains("8 agent ids are in both crowds"));
+
+  // A long-edge threshold drops exactly the stored edges longer than it, across the groups and within them.
+  double longest = 0;
+  for (const auto& e : m.formation_edges) {
+    longest = std::max(longest, (m.crowd.position(m.report.formation_frame, static_cast<std::size_t>(e[0])) -
+                                 m.crowd.position(m.report.formation_frame, static_cast<std::size_t>(e[1]))).head<2>().norm());
+  }
+  MergeOptions short_edges;
+  short_edges.max_edge_length = 1.6;
+  REQUIRE(longest > short_edges.max_edge_length);
+  const Merged cut = merge(a, sa, b, sb, short_edges);
+  std::size_t kept = 0;
+  for (const auto& e : m.formation_edges) {
+    kept += (m.crowd.position(m.report.formation_frame, static_cast<std::size_t>(e[0])) -
+             m.crowd.position(m.report.formation_frame, static_cast<std::size_t>(e[1]))).head<2>().norm() <= 1.6;
+  }
+  CHECK(cut.formation_edges.size() == kept);
+  CHECK(cut.formation_edges.size() < m.formation_edges.size());
+  CHECK(cut.report.cross_edges > 0);  // the groups stand 3.5 m apart centre to centre: their near rows stay joined
+  CHECK(cut.report.cross_edges <= m.report.cross_edges);
+  short_edges.max_edge_length = -1;
+  CHECK_THROWS_WITH(merge(a, sa, b, sb, short_edges), Catch::Contains("max_edge_length"));
 }
 
 TEST_CASE("merging crowds whose spans do not overlap is an error unless the union is asked for") {

@@ -11,6 +11,7 @@ void bind(OptionBinder& b, stitch::MergeOptions& o) {
   b.choice("span", o.span, {{"overlap", stitch::MergeSpan::overlap}, {"union", stitch::MergeSpan::union_of_spans}});
   b.choice("on_id_clash", o.on_id_clash, {{"shift", stitch::IdClash::shift}, {"error", stitch::IdClash::error}});
   b.field("time_tolerance", o.time_tolerance_s, Range::non_negative());
+  b.field("max_edge_length", o.max_edge_length, Range::non_negative());
 }
 
 }  // namespace

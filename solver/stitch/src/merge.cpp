@@ -110,6 +110,9 @@ Merged merge(const CrowdMotion& a, const Scene& scene_a, const CrowdMotion& b, c
   if (!(std::isfinite(options.time_tolerance_s) && options.time_tolerance_s >= 0)) {
     throw ConfigError("time_tolerance " + detail::number(options.time_tolerance_s) + ": expected a time ≥ 0 in seconds");
   }
+  if (!(std::isfinite(options.max_edge_length) && options.max_edge_length >= 0)) {
+    throw ConfigError("max_edge_length " + detail::number(options.max_edge_length) + ": expected a length ≥ 0 in metres (0: keep all)");
+  }
   if (a.frame_count() == 0 || b.frame_count() == 0) {
     throw InputError(std::string("merge: the ") + (a.frame_count() == 0 ? "first" : "second") + " crowd has no frames");
   }
@@ -219,6 +222,10 @@ Merged merge(const CrowdMotion& a, const Scene& scene_a, const CrowdMotion& b, c
     for (const auto& e : dt.edges) {
       const auto i = static_cast<std::int32_t>(present[static_cast<std::size_t>(e[0])]);
       const auto j = static_cast<std::int32_t>(present[static_cast<std::size_t>(e[1])]);
+      if (options.max_edge_length > 0 &&
+          (c.position(g, static_cast<std::size_t>(i)) - c.position(g, static_cast<std::size_t>(j))).head<2>().norm() > options.max_edge_length) {
+        continue;
+      }
       m.formation_edges.push_back({std::min(i, j), std::max(i, j)});
       if ((static_cast<std::size_t>(i) < na) != (static_cast<std::size_t>(j) < na)) ++report.cross_edges;
     }

@@ -7,6 +7,7 @@
 //   span: overlap                 # overlap: the frames every crowd shares (no overlap is an error) | union
 //   on_id_clash: shift            # shift: a later crowd's ids move above the earlier ones' | error
 //   time_tolerance: 1e-6          # seconds: frame times closer than this are one frame
+//   max_edge_length: 0            # metres: stored formation edges longer than this are dropped (0: keep all)
 //   obstacles: [...]              # added to the union of the crowds' scenes (the shared environment, e.g. a
 //   region: {...}                 #   town's buildings); format in throng/io/scene_config.h
 #pragma once

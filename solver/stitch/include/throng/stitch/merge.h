@@ -20,7 +20,8 @@
 //  * Scene: the union — both crowds' obstacles; the region, if only one has one, is kept; if both have one, the
 //    box covering both, periodic only on axes where both are periodic and their extents agree.
 //  * Formation edges for the file: the Delaunay triangulation of the union at the first merged frame where both
-//    groups have agents (throng/graph/delaunay.h); the report counts the edges joining the two groups.
+//    groups have agents (throng/graph/delaunay.h), minus edges longer than max_edge_length when it is set; the
+//    report counts the edges joining the two groups.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -41,6 +42,10 @@ struct MergeOptions {
   IdClash on_id_clash = IdClash::shift;
   /// Seconds: frame times of the two crowds closer than this are one frame.
   double time_tolerance_s = 1e-6;
+  /// Metres: the stored formation edges longer than this are dropped (0 keeps them all), as the edit job's
+  /// formation.max_edge_length does for its graph. Groups placed far apart in one scene (a town) are then not
+  /// joined by long edges; groups side by side still are.
+  double max_edge_length = 0.0;
 };
 
 struct MergeReport {
