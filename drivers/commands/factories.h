@@ -14,6 +14,7 @@ std::unique_ptr<Command> make_check_tiling_command();
 std::unique_ptr<Command> make_info_command();
 std::unique_ptr<Command> make_plot_command();
 std::unique_ptr<Command> make_sketch_command();
+std::unique_ptr<Command> make_collide_command();
 std::unique_ptr<Command> make_split_command();
 std::unique_ptr<Command> make_merge_command();
 std::unique_ptr<Command> make_transform_command();

@@ -10,6 +10,7 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_sketch_command());
   c.push_back(make_edit_command());
   c.push_back(make_formation_command());
+  c.push_back(make_collide_command());
   c.push_back(make_split_command());
   c.push_back(make_merge_command());
   c.push_back(make_transform_command());

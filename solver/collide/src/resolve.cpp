@@ -392,7 +392,7 @@ std::string summary(const Report& r) {
   if (r.converged) {
     s << "no collision left after " << r.iterations << " iterations";
   } else {
-    s << r.pair_contacts << " colliding pairs and " << r.obstacle_contacts << " obstacle contacts remain ("
+    s << r.pair_contacts << " colliding pair(s) and " << r.obstacle_contacts << " obstacle contact(s) remain ("
       << r.stuck_contacts << " stuck at pinned frames) after " << r.iterations << " iterations (" << r.stop_reason << ")";
   }
   s << "; smallest pair gap " << number(r.min_pair_gap) << " m, smallest obstacle gap " << number(r.min_obstacle_gap) << " m";

@@ -1,0 +1,49 @@
+// The collision repair job (`throng collide CROWD.h5 [--job COLLIDE.yaml] -o OUT.h5`, or a `collide` step of
+// `throng run`), and the method data it stores in the output under /parameters/throng/collide.
+//
+// Job file (every key optional; defaults shown; lengths in metres; see throng/collide/collide.h for the method):
+//
+//   margin: 0                  # clearance = r_a + r_b + margin between agents, r + margin to an obstacle
+//   push_fraction: 0.1         # a push separates a pair by this fraction of its clearance (paper: 10 %)
+//   max_iterations: 10000      # solves at most
+//   spread: 15                 # frames over which a push fades along a trajectory (each side), ≥ 1
+//   obstacle_pull: sideways    # sideways (across the agent's motion, the way round) | nearest (nearest boundary)
+//   pin_ends: true             # every trajectory's first and last present frame stays where it is
+//   fixed_agents: [3, 8]       # ids of agents that must not move at all
+//   min_feature_length: 0.05   # ℓ of the temporal feature weights (throng/graph/features.h)
+//   allow_remaining: false     # true: collisions left at the end are a warning, not exit 5
+//   obstacles: [...]           # more obstacles, added to the crowd file's own (io/scene_config.h format)
+//
+// Malformed keys and values are ConfigErrors (exit 2) naming the line; an unknown fixed agent is a ConfigError
+// from the solver naming the id.
+#pragma once
+
+#include <throng/collide/collide.h>
+#include <throng/core/scene.h>
+#include <throng/io/config.h>
+#include <throng/io/hdf5.h>
+#include <yaml-cpp/yaml.h>
+
+namespace throng {
+
+/// A parsed collide job.
+struct CollideJob {
+  collide::Options options;
+  bool allow_remaining = false;
+  Scene scene;  ///< the job's own obstacles (added to the crowd's)
+};
+
+/// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
+[[nodiscard]] CollideJob read_collide_job(const ConfigNode& job);
+
+/// The job with every option at its effective value (for --print-config and the output's provenance).
+[[nodiscard]] YAML::Node effective_collide_job(const CollideJob& job);
+
+/// Writes the report under /parameters/throng/collide:
+///   history   int64[I]    contacts (colliding frame intervals) after each iteration
+///   attributes: iterations, pair_contacts, obstacle_contacts, stuck_contacts, initial_pair_contacts,
+///               initial_obstacle_contacts, constraints, moved_agents, min_pair_gap, min_obstacle_gap (metres,
+///               +inf when no pair came near), converged (0/1), stop_reason
+void write_collide_data(const h5::Group& throng_parameters, const collide::Report& report);
+
+}  // namespace throng
