@@ -94,8 +94,9 @@ CoefficientTrack::Interval CoefficientTrack::interval(const ControlKeys& keys) c
   const Eigen::Index m = length_.rows();
   out.axes.setZero(m, 9);
   out.angles.setZero(m, 3);
-  const Eigen::MatrixXd& from = direction_[static_cast<std::size_t>(keys.keys[0])];
+  // Rotation f turns keyframe keys[f]'s direction to keys[f+1]'s: n−1 → n, n → n+1, n+1 → n+2 (cumulative form).
   for (int f = 0; f < 3; ++f) {
+    const Eigen::MatrixXd& from = direction_[static_cast<std::size_t>(keys.keys[static_cast<std::size_t>(f)])];
     const Eigen::MatrixXd& to = direction_[static_cast<std::size_t>(keys.keys[static_cast<std::size_t>(f + 1)])];
     for (Eigen::Index j = 1; j < m; ++j) {
       Eigen::Vector3d axis;
@@ -123,9 +124,11 @@ void CoefficientTrack::evaluate(const Interval& interval, const SplineWeights& w
       out(j, 0) = length * std::cos(angle);
       out(j, 1) = length * std::sin(angle);
     } else {
-      Eigen::Vector3d u = direction_[static_cast<std::size_t>(k[0])].row(j).transpose();
+      // Eq. 5 in cumulative form: u(t) = Rot(n+1→n+2)^{c2} Rot(n→n+1)^{c1+c2} Rot(n−1→n)^{−c−1} u_n.
+      const double exponents[3] = {-w.c[0], w.c[2] + w.c[3], w.c[3]};
+      Eigen::Vector3d u = direction_[static_cast<std::size_t>(k[1])].row(j).transpose();
       for (int f = 0; f < 3; ++f) {
-        const double exponent = w.c[static_cast<std::size_t>(f + 1)];
+        const double exponent = exponents[f];
         u = rotate(u, interval.axes.block(j, 3 * f, 1, 3).transpose(), exponent * interval.angles(j, f));
       }
       out.row(j) = length * u.transpose();

@@ -14,8 +14,9 @@ namespace throng::formation {
 /// Row 0 (the barycentre direction e1) is interpolated linearly with the spline weights. Rows j ≥ 1:
 ///   2-D: length r and angle θ, each a spline of the keyframes' values; angles are unwrapped so that consecutive
 ///        keyframes differ by at most π (the shorter way round, Eq. 4);
-///   3-D: length a spline; direction u(t) = Rot(u_a→u_{n+2})^{c2} Rot(u_a→u_{n+1})^{c1} Rot(u_a→u_n)^{c0} u_a with
-///        Rot(u→v) the shortest rotation — slerp for two keyframes, Eq. 5's product of rotation powers for more.
+///   3-D: length a spline; direction u(t) = Rot(u_{n+1}→u_{n+2})^{c2} Rot(u_n→u_{n+1})^{c1+c2} Rot(u_{n−1}→u_n)^{−c−1} u_n
+///        with Rot(u→v) the shortest rotation — slerp for two keyframes, Eq. 5 in cumulative form for more (each
+///        turn between consecutive keyframes, as the 2-D angles are unwrapped between consecutive keyframes).
 /// A zero coefficient has no direction: it takes its neighbour keyframe's (so the point moves straight through
 /// the origin of that coefficient instead of turning).
 class CoefficientTrack {
@@ -26,7 +27,7 @@ class CoefficientTrack {
   /// Per-interval data (the 3-D rotations between the control keyframes); cheap in 2-D.
   struct Interval {
     ControlKeys keys;
-    Eigen::MatrixXd axes;    ///< 3-D: #items by 9, unit axes of Rot(a→n), Rot(a→n+1), Rot(a→n+2)
+    Eigen::MatrixXd axes;    ///< 3-D: #items by 9, unit axes of Rot(n−1→n), Rot(n→n+1), Rot(n+1→n+2)
     Eigen::MatrixXd angles;  ///< 3-D: #items by 3, their angles
   };
   [[nodiscard]] Interval interval(const ControlKeys& keys) const;

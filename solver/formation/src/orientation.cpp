@@ -108,14 +108,19 @@ Eigen::MatrixXd OrientationTrack::evaluate(const ControlKeys& keys, const Spline
     for (int i = 0; i < 4; ++i) angle += w.c[static_cast<std::size_t>(i)] * angles_[static_cast<std::size_t>(k[static_cast<std::size_t>(i)])];
     return Eigen::Rotation2Dd(angle).toRotationMatrix();
   }
-  const Eigen::Matrix3d base = rotations_[static_cast<std::size_t>(k[0])];
-  Eigen::Matrix3d result = base;
-  for (int f = 0; f < 3; ++f) {
-    const Eigen::Matrix3d relative = rotations_[static_cast<std::size_t>(k[static_cast<std::size_t>(f + 1)])] * base.transpose();
-    Eigen::AngleAxisd power(relative);
-    power.angle() *= w.c[static_cast<std::size_t>(f + 1)];
-    result = power.toRotationMatrix() * result;
-  }
+  // Eq. 5 in cumulative form (as the eigenbases, spectral_group.cpp): with the rotations between consecutive
+  // keyframes R0 = O_n O_{n−1}ᵀ, R1 = O_{n+1} O_nᵀ, R2 = O_{n+2} O_{n+1}ᵀ (each its principal, shortest turn),
+  // O(t) = R2^{c2} R1^{c1+c2} R0^{−c−1} O_n.
+  auto key = [&](int i) -> Eigen::Matrix3d { return rotations_[static_cast<std::size_t>(k[static_cast<std::size_t>(i)])]; };
+  auto power = [](const Eigen::Matrix3d& r, double c) {
+    Eigen::AngleAxisd p(r);
+    p.angle() *= c;
+    return p.toRotationMatrix();
+  };
+  Eigen::Matrix3d result = key(1);
+  result = power(key(1) * key(0).transpose(), -w.c[0]) * result;
+  result = power(key(2) * key(1).transpose(), w.c[2] + w.c[3]) * result;
+  result = power(key(3) * key(2).transpose(), w.c[3]) * result;
   return result;
 }
 

@@ -32,8 +32,8 @@ namespace throng::formation {
                                                                     double isotropy_tolerance);
 
 /// The orientation between keyframes: 2-D, the rotation by the spline of the keyframes' angles (unwrapped so
-/// consecutive keyframes differ by less than π); 3-D, O(t) = (O_{n+2}O_aᵀ)^{c2} (O_{n+1}O_aᵀ)^{c1} (O_n O_aᵀ)^{c0} O_a
-/// (Eq. 5 on rotations). Keyframes are reproduced exactly.
+/// consecutive keyframes differ by less than π); 3-D, Eq. 5 on rotations in cumulative form,
+/// O(t) = (O_{n+2}O_{n+1}ᵀ)^{c2} (O_{n+1}O_nᵀ)^{c1+c2} (O_n O_{n−1}ᵀ)^{−c−1} O_n. Keyframes are reproduced exactly.
 class OrientationTrack {
  public:
   OrientationTrack() = default;

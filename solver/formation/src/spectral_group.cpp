@@ -55,15 +55,10 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
   coefficients_ = CoefficientTrack(coefficients);
   orientation_ = OrientationTrack(std::move(rotations));
 
-  // The rotations G_ab = M_aᵀ M_b that the intervals' Eq. 5 products use, decomposed in parallel.
+  // The rotations between consecutive keyframes, G_{k,k+1} = M_kᵀ M_{k+1}, that the intervals' Eq. 5 products
+  // use (cumulative form, see plan_interval), decomposed in parallel.
   std::vector<std::pair<int, int>> pairs;
-  for (int s = 0; s + 1 < static_cast<int>(k_count); ++s) {
-    const ControlKeys keys = control_keys(s, static_cast<int>(k_count));
-    for (int i = 1; i < 4; ++i) {
-      const std::pair<int, int> pair{keys.keys[0], keys.keys[static_cast<std::size_t>(i)]};
-      if (pair.first != pair.second && std::find(pairs.begin(), pairs.end(), pair) == pairs.end()) pairs.push_back(pair);
-    }
-  }
+  for (int k = 0; k + 1 < static_cast<int>(k_count); ++k) pairs.emplace_back(k, k + 1);
   std::vector<std::optional<RotationPower>> decomposed(pairs.size());
   dense::for_each(pairs.size(), 30.0 * m * m * m, [&](std::size_t i) {
     const Eigen::MatrixXd g = dense::multiply(bases_[static_cast<std::size_t>(pairs[i].first)], true,
@@ -74,23 +69,32 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
 }
 
 SpectralGroup::IntervalPlan SpectralGroup::plan_interval(int segment) const {
+  // Eq. 5 in cumulative form: with R0, R1, R2 the rotations n−1→n, n→n+1, n+1→n+2 and the spline weights
+  // c−1..c2 (summing to 1), M(t) = R2^{c2} R1^{c1+c2} R0^{c0+c1+c2} M_{n−1}, the rotational analogue of
+  // p(t) = p_{n−1} + (c0+c1+c2)(p_n − p_{n−1}) + (c1+c2)(p_{n+1} − p_n) + c2(p_{n+2} − p_{n+1}). Written in
+  // the keyframes' own bases (R0^{c0+c1+c2} M_{n−1} = R0^{−c−1} M_n, and so on):
+  //   M(t) = M_{n+1} · G_{n+1,n+2}^{c2} · G_{n,n+1}^{−(c−1+c0)} · G_{n−1,n}^{−c−1}.
+  // It equals the paper's (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1} when the rotations commute (always for two
+  // keyframes), but every power is of a rotation between CONSECUTIVE keyframes: the paper's powers of products
+  // take the principal logarithm of R1R0 and R2R1R0, which swings the basis the other way round once the
+  // rotations add up past π in a plane, and for rotations that do not commute leaves the path between M_n and
+  // M_{n+1} even at τ = 0. This is also the form of the 2-D coefficient and orientation splines (angles
+  // unwrapped between consecutive keyframes).
   IntervalPlan plan;
   plan.keys = control_keys(segment, keyframe_count());
-  const int a = plan.keys.keys[0];
-  for (int i = 1; i < 4; ++i) {
-    const int b = plan.keys.keys[static_cast<std::size_t>(i)];
-    if (b == a) continue;  // the identity: a duplicated endpoint
-    const RotationPower& rotation = rotations_.at({a, b});
-    if (rotation.is_identity()) continue;
-    if (!plan.factors.empty() && plan.factors.back().rotation == &rotation) {
-      plan.factors.back().weights.push_back(i);  // same rotation: exponents add
-    } else {
-      plan.factors.push_back(Factor{&rotation, {i}});
-    }
-  }
+  const auto& k = plan.keys.keys;
+  auto add = [&](int from, int to, double sign, std::vector<int> weights) {
+    if (from == to) return;  // a duplicated endpoint: the identity
+    const RotationPower& rotation = rotations_.at({from, to});
+    if (rotation.is_identity()) return;
+    plan.factors.push_back(Factor{&rotation, sign, std::move(weights)});
+  };
+  add(k[0], k[1], -1.0, {0});     // G_{n−1,n}^{−c−1}
+  add(k[1], k[2], -1.0, {0, 1});  // G_{n,n+1}^{−(c−1+c0)}
+  add(k[2], k[3], 1.0, {3});      // G_{n+1,n+2}^{c2}
   for (std::size_t i = 1; i < plan.factors.size(); ++i)
     plan.links.push_back(dense::multiply(plan.factors[i].rotation->basis(), true, plan.factors[i - 1].rotation->basis()));
-  const Eigen::MatrixXd& base = bases_[static_cast<std::size_t>(a)];
+  const Eigen::MatrixXd& base = bases_[static_cast<std::size_t>(k[2])];
   plan.final = plan.factors.empty() ? base : dense::multiply(base, false, plan.factors.back().rotation->basis());
   plan.coefficients = coefficients_.interval(plan.keys);
   return plan;
@@ -102,7 +106,7 @@ Eigen::MatrixXd SpectralGroup::apply_chain(const IntervalPlan& plan, const Eigen
   auto exponents = [&](const Factor& factor) {
     std::vector<double> out(weights.size(), 0.0);
     for (std::size_t f = 0; f < weights.size(); ++f)
-      for (int i : factor.weights) out[f] += weights[f].c[static_cast<std::size_t>(i)];
+      for (int i : factor.weights) out[f] += factor.sign * weights[f].c[static_cast<std::size_t>(i)];
     return out;
   };
   Eigen::MatrixXd w = dense::multiply(plan.factors.front().rotation->basis(), true, c);

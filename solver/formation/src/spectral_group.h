@@ -57,13 +57,14 @@ class SpectralGroup {
   // The product chain of one interval: x = final · U_last(c) · links... · U_1(c) · first_transposedᵀ · C.
   struct Factor {
     const RotationPower* rotation = nullptr;
+    double sign = 1.0;         // exponent = sign · Σ c[weights]
     std::vector<int> weights;  // indices into SplineWeights::c summed into this factor's exponent
   };
   struct IntervalPlan {
     ControlKeys keys;
     std::vector<Factor> factors;
     std::vector<Eigen::MatrixXd> links;  // links[i] = Z_{i+1}ᵀ Z_i, for i + 1 < factors.size()
-    Eigen::MatrixXd final;               // M_a Z_last, or M_a without factors
+    Eigen::MatrixXd final;               // M_{n+1} Z_last, or M_{n+1} without factors
     CoefficientTrack::Interval coefficients;
   };
   [[nodiscard]] IntervalPlan plan_interval(int segment) const;
@@ -76,7 +77,7 @@ class SpectralGroup {
   double tension_ = 0.5;
   std::vector<Adjacency> graphs_;
   std::vector<Eigen::MatrixXd> bases_;                     // M_k
-  std::map<std::pair<int, int>, RotationPower> rotations_;  // G_ab = M_aᵀ M_b for the pairs the intervals use
+  std::map<std::pair<int, int>, RotationPower> rotations_;  // G_{k,k+1} = M_kᵀ M_{k+1}
   CoefficientTrack coefficients_;
   OrientationTrack orientation_;
 };
