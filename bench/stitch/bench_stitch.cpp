@@ -2,10 +2,11 @@
 // graph and one solve); the exact matching alone; and the paper's town job (configs/run-town.yaml) run end to end
 // by the `throng` program.
 //
-// Arguments of stitch_two: sample_step, blend_window (0: each clip's length). The default — every frame, the whole
-// clips blended — solves 599 × 1,000 vertices at once and needs more than 17 GB (killed on the 23 GB reference
-// machine), so it is not run; graph samples every 8th frame (2.9 GB), or a 30-frame window, are what such crowds
-// use.
+// Arguments of stitch_two: sample_step, blend_window (0: each clip's length). {1, 30} is the default (every frame,
+// a 30-frame window per side: 61,000 vertices). The paper's whole-clip window at every frame solves 599 × 1,000
+// vertices at once and needs more than 17 GB (killed on the 23 GB reference machine), so it is not run; {8, 0}
+// is the whole clips sampled every 8th frame. Step 1 and step 2 are factorised one after the other (one factor in
+// memory at a time).
 //
 // Run:   bench_stitch --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include "../../tests/graph/synthetic_crowd.h"

@@ -83,7 +83,7 @@ class StitchCommand final : public Command {
     app.add_option("clips", inputs_, "Crowd files to stitch (.h5), two or more, in order")->required()->expected(2, -1);
     app.add_option("-o,--output", output_, "Crowd file to write (.h5)")->required();
     app.add_option("--job", job_path_, "Stitch job (.yaml): weights, solver ...; the flags below override its keys");
-    flags_.value(app, "--blend-window", "blend_window", "Frames from each joint over which formations blend (0: each clip's length)");
+    flags_.value(app, "--blend-window", "blend_window", "Frames from each joint over which formations blend, per side (default 30; 0: each clip's length)");
     flags_.value(app, "--matching", "matching", "world | centred: how agents are matched across the joint");
     flags_.value(app, "--alignment", "alignment", "rigid | translation | none: how the next clip is moved onto the joint");
     flags_.value(app, "--sample-step", "sample_step", "Frames between graph samples");

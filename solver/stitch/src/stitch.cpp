@@ -206,8 +206,9 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
     if (f > 0) samples.push_back(J + f);
   }
   report.samples = samples.size();
-  const std::size_t W1 = options.blend_window > 0 ? options.blend_window : t1 - 1;
-  const std::size_t W2 = options.blend_window > 0 ? options.blend_window : t2 - 1;
+  // W per side, never past the clip's outer frame (where f_a must reach 0: that frame is pinned at its input).
+  const std::size_t W1 = options.blend_window > 0 ? std::min(options.blend_window, t1 - 1) : t1 - 1;
+  const std::size_t W2 = options.blend_window > 0 ? std::min(options.blend_window, t2 - 1) : t2 - 1;
   report.window_first = W1;
   report.window_second = W2;
   auto free_sample = [&](std::size_t g) {

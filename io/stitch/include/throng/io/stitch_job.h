@@ -4,8 +4,8 @@
 //
 // Job keys (all optional; defaults shown):
 //
-//   blend_window: 0               # frames from the joint over which the formations morph (Eq. 11's window), per
-//                                 #   side; 0: each clip's own length (the paper)
+//   blend_window: 30              # frames from the joint over which the formations morph (Eq. 11's window), per
+//                                 #   side, capped at each clip's length; 0: each clip's own length (the paper)
 //   matching: world               # world: match agents by distance where they are | centred: after moving both
 //                                 #   frames to their centroids
 //   alignment: rigid              # rigid (rotation + translation) | translation | none

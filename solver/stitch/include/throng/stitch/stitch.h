@@ -17,8 +17,13 @@
 //     Ḡ's triangles) with these features.
 //
 // Decisions where the paper is open:
-//  * Window. W counts frames from the joint, per side; 0 (default) means the paper's choice, each clip's own
-//    length: t − 1 frames on G's side and t′ − 1 on G′'s, so that f_a reaches 0 exactly at the clip's outer frame.
+//  * Window. W counts frames from the joint, per side, capped at each clip's length; 0 means the paper's choice,
+//    each clip's own length: t − 1 frames on G's side and t′ − 1 on G′'s, so that f_a reaches 0 exactly at the
+//    clip's outer frame. The default is a bounded window of 30 frames (Eq. 11 with the window as the span t):
+//    the solve covers every agent at every sample of the window, and its sparse factor grows about linearly with
+//    the samples times the agents (the frames are coupled in time, so the factor's separators are whole frames);
+//    blending two 300-frame clips of 1,000 agents whole needs a 600,000-vertex factor (> 17 GB), a 30-frame
+//    window 61,000 vertices (about 1 GB). Short clips are blended whole either way.
 //  * Pins. The system's position, rotation and scale need fixing. Frames where f_a = 0 (outside the window) keep
 //    their aligned input positions: they are pinned, and only the window between them is solved (one pinned
 //    sample of the outside on each side suffices, since features join adjacent samples only). The outer frame of
@@ -62,7 +67,7 @@ enum class Alignment { rigid, translation, none };
 
 struct Options {
   std::size_t sample_step = 1;   ///< frames between graph samples (≥ 1)
-  std::size_t blend_window = 0;  ///< W in frames from the joint, per side; 0 = each clip's own length (see above)
+  std::size_t blend_window = 30;  ///< W in frames from the joint, per side (capped at the clip); 0 = each clip's own length
   Matching matching = Matching::world;
   Alignment alignment = Alignment::rigid;
   FormationOptions formation;    ///< Ḡ's formation edges (long-edge threshold; edits by agent id of G)
