@@ -70,36 +70,37 @@ FeatureDeformation deform_with_features(const FeatureSet& features, const Eigen:
   const Eigen::VectorXd no_constraints(0);
 
   Objective step1 = step1_objective(features, vertices, weights.alpha, weights.beta);
-  Objective step2;
-  if (weights.scale_compensation) step2 = step2_objective(features, vertices, weights.alpha_prime, weights.beta_prime);
   out.assemble_seconds = seconds_since(start);
 
-  auto setup = [&](linalg::ConstrainedLeastSquares& s, const Objective& o) {
+  // One solve per step, one after the other: step 1's factor (and objective) is released before step 2's is
+  // built, so the peak memory is one factor, not two (the Editor keeps both for its drags; a one-shot solve
+  // need not). The results are the same as factoring both first.
+  auto solve_step = [&](const Objective& o, const Eigen::VectorXd& b, bool first) {
+    linalg::ConstrainedLeastSquares s(solver);
+    auto t = Clock::now();
     s.set_objective(o.A, o.weights);
     s.set_pinned(unknowns);
     s.set_near_null_space(modes, 2);
     s.set_complex_pairs(true);  // every feature row is complex-linear in (x, y) pairs
+    s.precompute();
+    out.precompute_seconds += seconds_since(t);
+    if (first) out.factorization = s.report().factorization.method;
+    t = Clock::now();
+    Eigen::MatrixXd x = s.solve(b, pin_values, no_constraints);
+    out.solve_seconds += seconds_since(t);
+    return x;
   };
-  linalg::ConstrainedLeastSquares solver1(solver), solver2(solver);
-  start = Clock::now();
-  setup(solver1, step1);
-  solver1.precompute();
+  out.step1 = as_positions(solve_step(step1, step1.b, true));
+  step1 = Objective{};
   if (weights.scale_compensation) {
-    setup(solver2, step2);
-    solver2.precompute();
-  }
-  out.precompute_seconds = seconds_since(start);
-  out.factorization = solver1.report().factorization.method;
-
-  start = Clock::now();
-  out.step1 = as_positions(solver1.solve(step1.b, pin_values, no_constraints));
-  if (weights.scale_compensation) {
+    start = Clock::now();
+    Objective step2 = step2_objective(features, vertices, weights.alpha_prime, weights.beta_prime);
     set_step2_targets(features, original, out.step1, step2.b);
-    out.positions = as_positions(solver2.solve(step2.b, pin_values, no_constraints));
+    out.assemble_seconds += seconds_since(start);
+    out.positions = as_positions(solve_step(step2, step2.b, false));
   } else {
     out.positions = out.step1;
   }
-  out.solve_seconds = seconds_since(start);
   return out;
 }
 
