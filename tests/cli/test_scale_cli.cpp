@@ -94,6 +94,10 @@ TEST_CASE("a local edit solves part of the crowd, and with a full halo gives the
   const auto job_local = write_text(dir / "job_local.yaml", std::string(corner_drag) + "local: {parts: 8, halo: 0}\n");
   REQUIRE(run("--quiet edit " + input.string() + " --job " + job_local.string() + " -o " + (dir / "local2.h5").string()) == 0);
   CHECK(read_crowd_file(dir / "local2.h5").motion.positions == local.motion.positions);
+  // One and two threads give the same bits.
+  REQUIRE(run("--quiet --threads 1 edit " + input.string() + " --job " + job_local.string() + " -o " + (dir / "t1.h5").string()) == 0);
+  REQUIRE(run("--quiet --threads 2 edit " + input.string() + " --job " + job_local.string() + " -o " + (dir / "t2.h5").string()) == 0);
+  CHECK(read_crowd_file(dir / "t1.h5").motion.positions == read_crowd_file(dir / "t2.h5").motion.positions);
   // --print-config shows the effective local block.
   REQUIRE(run("--print-config edit " + input.string() + " --job " + job.string() + " --local-parts 5 -o x.h5", &out) == 0);
   CHECK_THAT(out, Contains("local:") && Contains("parts: 5") && Contains("halo: 1"));
