@@ -78,7 +78,7 @@ TEST_CASE("moving obstacles are avoided") {
   require_clean(scene, result, 0.0);
 }
 
-TEST_CASE("fixed agents do not move; pins off lets the ends move") {
+TEST_CASE("fixed agents do not move and pins off lets the ends move") {
   const auto scene = scenes::bump(2, 60);
   Options options;
   options.fixed_agents = {0, 5};

@@ -18,7 +18,7 @@ TEST_CASE("with_shape gives absent agents, ids 0..N-1 and the requested radius")
   CHECK_NOTHROW(m.validate());
 }
 
-TEST_CASE("position and frame views address the [T][N][3] layout") {
+TEST_CASE("position and frame views address the T by N by 3 layout") {
   auto m = CrowdMotion::with_shape(2, 3);
   m.position(1, 2) = Eigen::Vector3d(7, 8, 9);
   CHECK(m.positions[(1 * 3 + 2) * 3 + 0] == 7);

@@ -7,7 +7,7 @@
 
 using throng::Rng;
 
-TEST_CASE("the same seed gives the same stream; derived streams differ") {
+TEST_CASE("the same seed gives the same stream and derived streams differ") {
   Rng a(42), b(42), c(throng::derive_seed(42, 1));
   for (int i = 0; i < 100; ++i) {
     const auto x = a.next();
@@ -29,7 +29,7 @@ TEST_CASE("xoshiro256** matches its published reference for a known state") {
   CHECK(first != 0);
 }
 
-TEST_CASE("uniform draws lie in [0,1) with the right mean and variance") {
+TEST_CASE("uniform draws lie in 0 to 1 (half-open) with the right mean and variance") {
   Rng r(1);
   const int n = 200000;
   double sum = 0, sum2 = 0;

@@ -150,7 +150,7 @@ TEST_CASE("a job reads keyframes, edits, ids and options, and writes them back a
   CHECK(again.problem.edits.scale.size() == 2);
 }
 
-TEST_CASE("hierarchy forms: a tree, sizes, nested and auto; scale edits by group name") {
+TEST_CASE("hierarchy forms: a tree, sizes, nested and auto and scale edits by group name") {
   SECTION("nested: levels of consecutive individuals") {
     const FormationJob job = read_formation_job(yaml(
         "hierarchy: {nested: [2, 2]}\n" + two_keyframes));
@@ -244,7 +244,7 @@ TEST_CASE("job errors: data problems are InputErrors with the line, syntax and o
   }
 }
 
-TEST_CASE("the result lists each keyframe's frame and graph; the crowd's formation edges are those kept throughout") {
+TEST_CASE("the result lists each keyframe's frame and graph and the crowd's formation edges are those kept throughout") {
   // A square with a centre, then the same turned by 45° and spread: Delaunay joins the centre to every corner
   // and the corners around; the job removes one rim edge in keyframe 1 only and adds a diagonal everywhere.
   const FormationJob job = read_formation_job(yaml(

@@ -83,7 +83,7 @@ Result two_keyframes(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to) {
 
 }  // namespace
 
-TEST_CASE("keyframes in one order round the formation are joined by direct paths; a mirror image loops") {
+TEST_CASE("keyframes in one order round the formation are joined by direct paths and a mirror image loops") {
   SECTION("a block translating and turning by 90°: the rigid path, about its barycentre an arc of 90°") {
     Eigen::MatrixXd block(12, 2);
     for (int i = 0; i < 12; ++i) block.row(i) = Eigen::RowVector2d(1.5 * (i % 4) - 2.25, 1.5 * (i / 4) - 1.5);

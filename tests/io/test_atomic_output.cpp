@@ -9,7 +9,7 @@
 
 using namespace throng;
 
-TEST_CASE("an uncommitted output leaves nothing; a committed one replaces the target") {
+TEST_CASE("an uncommitted output leaves nothing and a committed one replaces the target") {
   const auto dir = test::scratch_dir("io_atomic");
   std::ofstream(dir / "out.txt") << "old";
   {

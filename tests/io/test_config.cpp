@@ -44,7 +44,7 @@ Options read(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("absent keys keep defaults; present keys are read") {
+TEST_CASE("absent keys keep defaults and present keys are read") {
   const Options o = read("time_step: 0.05\nagents: 7\nend_of_path: remove\ninner: {radius: 1.5}\nweights: [1, 3, 4]\n");
   CHECK(o.time_step == 0.05);
   CHECK(o.agents == 7);

@@ -52,7 +52,7 @@ TEST_CASE("an overlay is drawn first in one colour, dashed") {
   CHECK(svg.find("stroke-dasharray") < svg.find("<polyline stroke=\"#1f77b4\""));
 }
 
-TEST_CASE("PNG goes through rsvg-convert; bad extensions and frames are config errors") {
+TEST_CASE("PNG goes through rsvg-convert and bad extensions and frames are config errors") {
   const auto dir = test::scratch_dir("io_plot_png");
   const CrowdFile f = test::rich_crowd();
   write_plot(dir / "p.png", {{.file = &f, .label = "x"}}, {});

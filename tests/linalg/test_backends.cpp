@@ -7,7 +7,7 @@
 
 using namespace throng::linalg;
 
-TEST_CASE("backends are chosen by name; unknown names are configuration errors") {
+TEST_CASE("backends are chosen by name and unknown names are configuration errors") {
   const auto names = available_backends();
   REQUIRE_FALSE(names.empty());
   CHECK(names.front() == "eigen");

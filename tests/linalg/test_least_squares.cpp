@@ -155,7 +155,7 @@ TEST_CASE("without the Schur cache the answer is the same") {
   CHECK(relative_gap(uncached, cached) < agree);
 }
 
-TEST_CASE("new weights refactorise without a new analysis; a new pinned set analyses again") {
+TEST_CASE("new weights refactorise without a new analysis and a new pinned set analyses again") {
   Fixture f;
   ConstrainedLeastSquares solver;
   solver.set_objective(f.A, f.w);

@@ -62,7 +62,7 @@ TEST_CASE("a split by time keeps every value and the halves share the cut frame"
   CHECK(slice_frames(c, 0, 10, false).agent_count() == 6);
 }
 
-TEST_CASE("a split by agents takes ids or species, or the rest; empty selections are errors") {
+TEST_CASE("a split by agents takes ids or species, or the rest and empty selections are errors") {
   CrowdMotion c = test::marching_grid(2, 3, 10);  // ids 100..105
   c.species = {0, 1, 0, 1, 2, 2};
   const std::vector<std::size_t> chosen = select_agents(c, {{101}, {2}});
