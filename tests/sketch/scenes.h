@@ -45,7 +45,8 @@ inline constexpr double paper_length_m = 140.0;
 
 /// A large crowd: 2,000 agents on a 40 m wide, 250 m long course past two pillars (circles), a kiosk (convex
 /// polygon), a gate of two thick walls leaving a 20 m opening, and a cart (a circle) crossing the course. Four
-/// auxiliary lines (±10 m, ±20 m). 120 s of crowd time.
+/// auxiliary lines (±10 m, ±20 m). 200 s of crowd time: the whole crowd gets past the
+/// obstacles (the last agent arrives at about 350 s).
 [[nodiscard]] SketchScene large_crowd();
 
 }  // namespace throng::sketch::scenes

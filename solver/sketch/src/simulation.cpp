@@ -43,19 +43,19 @@ struct State {
 // What the next step needs to know about a state as a whole, gathered while the state is written (per task,
 // merged under a lock: minima, maxima and counts are exact in any order, so the result is thread-independent).
 struct Summary {
-  std::size_t walking = 0, standing = 0;
-  double largest_avoidance = 0;  // max r over agents in the grid: the grid's cell size
-  Eigen::AlignedBox2d bounds;    // of the agents in the grid
+  std::size_t n_walking = 0, n_standing = 0;  // agents walking; agents arrived and still present
+  double largest_avoidance = 0;               // max r over agents in the grid: the grid's cell size
+  Eigen::AlignedBox2d bounds;                 // of the agents in the grid
 
   void add(std::uint8_t status, double x, double y, double r) {
     if (status == removed) return;
-    (status == walking ? walking : standing) += 1;
+    (status == walking ? n_walking : n_standing) += 1;
     largest_avoidance = std::max(largest_avoidance, r);
     bounds.extend(Eigen::Vector2d(x, y));
   }
   void merge(const Summary& o) {
-    walking += o.walking;
-    standing += o.standing;
+    n_walking += o.n_walking;
+    n_standing += o.n_standing;
     largest_avoidance = std::max(largest_avoidance, o.largest_avoidance);
     bounds.extend(o.bounds);
   }
@@ -272,7 +272,7 @@ void Simulation::Impl::rebuild(double t0, double t1) {
   // With avoidance off, cells only serve the obstacle lists: any size works, use the follow radius.
   const double cell =
       options.avoid_weight > 0 && summary.largest_avoidance > 0 ? summary.largest_avoidance : options.follow_radius_m;
-  grid.build(s.x, s.y, in_grid, summary.walking + summary.standing, summary.bounds, cell);
+  grid.build(s.x, s.y, in_grid, summary.n_walking + summary.n_standing, summary.bounds, cell);
   obstacles.rebuild(grid, t0, t1);
 }
 
@@ -370,7 +370,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   const bool has_obstacles = !obstacles.empty();
   // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
   // last standard distance): walking agents that reach it, R beyond, join it (EndOfPath::stop).
-  const double standing_area = static_cast<double>(summary.standing) * standard[K - 1] * standard[K - 1] * 0.8660254;
+  const double standing_area = static_cast<double>(summary.n_standing) * standard[K - 1] * standard[K - 1] * 0.8660254;
   const double end_reach = remove_at_end ? 0.0 : R + std::sqrt(standing_area / std::numbers::pi);
 
   for (std::size_t slot = begin; slot < end; ++slot) {
@@ -469,7 +469,8 @@ std::size_t Simulation::agent_count() const noexcept { return impl_->N; }
 std::size_t Simulation::step_count() const noexcept { return impl_->steps; }
 double Simulation::time() const noexcept { return impl_->time_at(impl_->steps); }
 bool Simulation::finished() const noexcept {
-  return impl_->summary.walking == 0 && (impl_->options.end_of_path == EndOfPath::stop || impl_->summary.standing == 0);
+  return impl_->summary.n_walking == 0 &&
+         (impl_->options.end_of_path == EndOfPath::stop || impl_->summary.n_standing == 0);
 }
 Eigen::Vector2d Simulation::position(std::size_t agent) const {
   assert(agent < impl_->N);
