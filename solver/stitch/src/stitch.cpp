@@ -40,11 +40,13 @@ Presence present_throughout(const CrowdMotion& crowd) {
 }
 
 // Sample frames of a clip of `frames` frames, every `step` frames counted from the joint: from the last frame
-// backwards for G (joint_is_last), from the first forwards for G′; the outer frame always. Increasing.
-std::vector<std::size_t> samples_from_joint(std::size_t frames, std::size_t step, bool joint_is_last) {
+// backwards for G (joint_is_last), from the first forwards for G′; the outer frame and the window's edge (the
+// frame `window` ≤ frames − 1 from the joint, the first where f_a = 0) always. Increasing.
+std::vector<std::size_t> samples_from_joint(std::size_t frames, std::size_t step, std::size_t window, bool joint_is_last) {
   std::vector<std::size_t> out;
   for (std::size_t d = 0; d < frames; d += step) out.push_back(joint_is_last ? frames - 1 - d : d);
   out.push_back(joint_is_last ? 0 : frames - 1);
+  out.push_back(joint_is_last ? frames - 1 - window : window);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
@@ -200,17 +202,25 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
   // Samples of the stitched clip and the window that is solved.
   report_to.update(0.1, "building the blended graph");
   start = Clock::now();
-  std::vector<std::size_t> samples = samples_from_joint(t1, options.sample_step, true);
-  const std::size_t joint_sample = samples.size() - 1;
-  for (std::size_t f : samples_from_joint(t2, options.sample_step, false)) {
-    if (f > 0) samples.push_back(J + f);
-  }
-  report.samples = samples.size();
   // W per side, never past the clip's outer frame (where f_a must reach 0: that frame is pinned at its input).
   const std::size_t W1 = options.blend_window > 0 ? std::min(options.blend_window, t1 - 1) : t1 - 1;
   const std::size_t W2 = options.blend_window > 0 ? std::min(options.blend_window, t2 - 1) : t2 - 1;
   report.window_first = W1;
   report.window_second = W2;
+  std::vector<std::size_t> samples = samples_from_joint(t1, options.sample_step, W1, true);
+  const std::size_t joint_sample = samples.size() - 1;
+  for (std::size_t f : samples_from_joint(t2, options.sample_step, W2, false)) {
+    if (f > 0) samples.push_back(J + f);
+  }
+  report.samples = samples.size();
+  // Ḡ at any stitched frame (Eq. 11). Unlike the aligned input, which jumps by the whole gap from J to J + 1, Ḡ
+  // is continuous across the joint (G's side reaches the midpoint at J, G′'s side leaves it), and it equals the
+  // input wherever f_a = 0.
+  auto intermediate = [&](std::size_t F, std::size_t j) -> Eigen::Vector2d {
+    if (F == J) return naive(J, j) + joint_shift[j];
+    if (F < J) return naive(F, j) + blend_weight(static_cast<double>(J - F), static_cast<double>(W1)) * joint_shift[j];
+    return naive(F, j) - blend_weight(static_cast<double>(F - J), static_cast<double>(W2)) * joint_shift[j];
+  };
   auto free_sample = [&](std::size_t g) {
     const std::size_t F = samples[g];
     if (F == 0 || F == T - 1) return false;
@@ -244,11 +254,7 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
     for (std::size_t j = 0; j < n; ++j) {
       const Index v = blended.vertex(l, j);
       input.row(v) = naive(F, j).transpose();
-      Eigen::Vector2d w;
-      if (F == J) w = naive(J, j) + joint_shift[j];
-      else if (F < J) w = naive(F, j) + blend_weight(static_cast<double>(J - F), static_cast<double>(W1)) * joint_shift[j];
-      else w = naive(F, j) - blend_weight(static_cast<double>(F - J), static_cast<double>(W2)) * joint_shift[j];
-      blended.positions.row(v) = w.transpose();
+      blended.positions.row(v) = intermediate(F, j).transpose();
     }
   }
   const MotionGraph graph = build_motion_graph(blended, options.formation);
@@ -315,8 +321,10 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
   report.precompute_seconds = solved.precompute_seconds;
   report.solve_seconds = solved.solve_seconds;
 
-  // The output at every source frame: the input, plus at the window the solved samples and a spline of the
-  // displacement between them.
+  // The output at every source frame: the input outside the solved window; inside it the solved samples, and
+  // between samples Ḡ plus a spline of the displacement from Ḡ (solved − Ḡ at the samples). Interpolating the
+  // displacement from the aligned input instead would carry the input's jump at the joint into the frames
+  // between samples whenever sample_step > 1.
   report_to.update(0.9, "resampling");
   CrowdMotion& out = result.crowd;
   out = CrowdMotion::with_shape(T, n);
@@ -338,7 +346,7 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
   for (std::size_t l = 0; l < L; ++l) {
     for (std::size_t j = 0; j < n; ++j) {
       const Index v = blended.vertex(l, j);
-      displacement.block<1, 2>(static_cast<Index>(l), static_cast<Index>(2 * j)) = solved.positions.row(v) - input.row(v);
+      displacement.block<1, 2>(static_cast<Index>(l), static_cast<Index>(2 * j)) = solved.positions.row(v) - blended.positions.row(v);
       report.max_change = std::max(report.max_change, (solved.positions.row(v) - input.row(v)).norm());
     }
   }
@@ -355,7 +363,7 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
       }
       spline.evaluate(times[F], 0, d);
       for (std::size_t j = 0; j < n; ++j) {
-        out.position(F, j).head<2>() += d.segment<2>(static_cast<Index>(2 * j)).transpose();
+        out.position(F, j).head<2>() = intermediate(F, j) + d.segment<2>(static_cast<Index>(2 * j)).transpose();
       }
     }
   });

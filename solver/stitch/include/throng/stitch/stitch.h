@@ -37,9 +37,14 @@
 //  * Agents: only those present at every frame of their clip take part (others are left out and listed); both
 //    clips must then have the same number (else InputError). Result agents are G's, with G's ids, radii and species.
 //  * Sampling: every sample_step-th frame, counted from the joint outwards on both sides (so the joint's
-//    neighbouring intervals are regular), plus each clip's outer frame. The output has every source frame: the
-//    samples' solved positions exactly, frames between them the input plus a not-a-knot spline of the
-//    displacement (as the Editor does).
+//    neighbouring intervals are regular), plus each clip's outer frame and the window's edges J − W and J + W′
+//    (the first frames where f_a = 0, pinned: frames outside the window keep their input whatever the step).
+//    The output has every source frame: the samples' solved positions exactly; a frame F between them Ḡ(F)
+//    plus a not-a-knot spline (in time, through the samples of the solved window) of the displacement solved − Ḡ. The displacement is taken from Ḡ, not
+//    from the aligned input, because Ḡ is continuous across the joint while the input jumps there by the whole
+//    gap (a spline of solved − input would put that jump back between samples). The Editor interpolates its
+//    displacement with a natural spline; here not-a-knot, the end condition of throng's other resamplings
+//    (throng/timewarp/spline.h), since the displacement has no reason to stop curving at the window's ends.
 //  * Times: G's, then G′'s shifted so that its first frame falls on G's last (frame rates may differ; a time warp
 //    or transform resamples afterwards). z is kept from the inputs. Velocities are dropped.
 //  * At the joint, if G (or G′) has fewer than 3 samples it has no temporal feature next to the joint and the other
