@@ -109,7 +109,12 @@ TEST_CASE("keyframes in one order round the formation are joined by direct paths
   SECTION("a circle opening into an arc of a larger circle, pointing the way the arc goes") {
     const Eigen::MatrixXd arc = ring(5, 7.0, 30.0, 14.4, {0, -7});
     const Quality q = worst_interval(two_keyframes(ring(5, 1.4, 58.8 - 144.0, 72.0), arc), 2, true);
-    CHECK(q.ratio <= 1.25);  // measured 1.20
+    // Measured 1.252, before Eq. 5's cumulative form (46f5216) as after: for two keyframes both forms are
+    // M(t) = M_0 G^{s(t)}, and the ratio is the same for every tension, orientation and reordering option (1.254
+    // unordered). The ends, 74% of the straight distance, go nearly straight (1.08 and 1.10); the middle three,
+    // 0.46-0.97 m from their targets, bow out ~0.3 m while the circle opens (1.46-2.35). An earlier comment's 1.20
+    // was never a run (the test was not registered). Bound: 1.3, 4% over the measure, far below the mirror's 1.91.
+    CHECK(q.ratio <= 1.3);
     CHECK(q.excursion <= 0.05 * q.extent);
   }
   SECTION("the same keyframes, the circle going round the other way: the paths loop") {
