@@ -167,23 +167,33 @@ std::vector<int> max_min_order(const Eigen::MatrixXd& g) {
   return order;
 }
 
-Eigen::MatrixXd align_basis(const Eigen::MatrixXd& source, Eigenbasis target, Reordering reordering) {
-  const Eigen::Index n = source.cols();
-  if (n <= 1) return target.vectors;
-  align_repeated_eigenspaces(source, target);
+Eigenbasis align_basis(const Eigenbasis& source, Eigenbasis target, Reordering reordering) {
+  const Eigen::Index n = source.vectors.cols();
+  if (n <= 1) return target;
+  // The source's own eigenvalue order: visit[j] is the source column holding its j-th smallest eigenvalue
+  // (stable: equal values keep their column order; column 0, λ = 0, first).
+  std::vector<Eigen::Index> visit(static_cast<std::size_t>(n));
+  for (Eigen::Index j = 0; j < n; ++j) visit[static_cast<std::size_t>(j)] = j;
+  std::stable_sort(visit.begin() + 1, visit.end(),
+                   [&](Eigen::Index a, Eigen::Index b) { return source.values(a) < source.values(b); });
+  Eigen::MatrixXd sorted(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) sorted.col(j) = source.vectors.col(visit[static_cast<std::size_t>(j)]);
+  align_repeated_eigenspaces(sorted, target);
 
-  Eigen::MatrixXd g = dense::multiply(source, true, target.vectors);
+  const Eigen::MatrixXd g = dense::multiply(sorted, true, target.vectors);
   std::vector<int> order(static_cast<std::size_t>(n));
   for (Eigen::Index j = 0; j < n; ++j) order[static_cast<std::size_t>(j)] = static_cast<int>(j);
   if (reordering == Reordering::greedy) order = greedy_order(g);
   if (reordering == Reordering::max_min) order = max_min_order(g);
 
-  Eigen::MatrixXd aligned(n, n);
-  Eigen::MatrixXd g_aligned(n, n);
+  Eigenbasis aligned{Eigen::MatrixXd(n, n), Eigen::VectorXd(n)};
+  Eigen::MatrixXd g_aligned(n, n);  // sortedᵀ · (the aligned vectors in the sorted order)
   for (Eigen::Index j = 0; j < n; ++j) {
     const int from = order[static_cast<std::size_t>(j)];
+    const Eigen::Index column = visit[static_cast<std::size_t>(j)];
     const double sign = g(j, from) < 0 ? -1.0 : 1.0;
-    aligned.col(j) = sign * target.vectors.col(from);
+    aligned.vectors.col(column) = sign * target.vectors.col(from);
+    aligned.values(column) = target.values(from);
     g_aligned.col(j) = sign * g.col(from);
   }
   const int det = dense::determinant_sign(g_aligned);
@@ -192,7 +202,7 @@ Eigen::MatrixXd align_basis(const Eigen::MatrixXd& source, Eigenbasis target, Re
     Eigen::Index least = 1;
     for (Eigen::Index j = 2; j < n; ++j)
       if (std::abs(g_aligned(j, j)) < std::abs(g_aligned(least, least))) least = j;
-    aligned.col(least) *= -1.0;
+    aligned.vectors.col(visit[static_cast<std::size_t>(least)]) *= -1.0;
   }
   return aligned;
 }

@@ -37,10 +37,10 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
     graphs_[k] = std::move(graph);
   });
 
-  // Each basis aligned to the previous one (§3.2, §4.2).
+  // Each basis aligned to the previous one (§3.2, §4.2), the previous one taken in its own eigenvalue order.
   bases_.resize(k_count);
-  bases_[0] = std::move(eigenbases[0].vectors);
-  for (std::size_t k = 1; k < k_count; ++k) bases_[k] = align_basis(bases_[k - 1], std::move(eigenbases[k]), options.reordering);
+  for (std::size_t k = 1; k < k_count; ++k) eigenbases[k] = align_basis(eigenbases[k - 1], std::move(eigenbases[k]), options.reordering);
+  for (std::size_t k = 0; k < k_count; ++k) bases_[k] = std::move(eigenbases[k].vectors);
 
   // Orientation (PCA adjustment) and the coefficients of each keyframe in the common frame (Eq. 1).
   std::vector<Eigen::MatrixXd> centred(k_count);
