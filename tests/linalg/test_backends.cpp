@@ -1,4 +1,5 @@
 #include "problems.h"
+#include <algorithm>
 
 #include <throng/core/errors.h>
 #include <throng/linalg/spd_solver.h>
@@ -54,5 +55,67 @@ TEST_CASE("an indefinite matrix falls back to LDLT and is still rejected as sing
   } catch (const SingularMatrixError& e) {
     CHECK(e.index() == 1);
     CHECK_FALSE(solver->factorization_info().fallback_reason.empty());
+  }
+}
+
+namespace {
+
+// Solves Q X = B with the petsc backend and the given options; returns ‖QX − B‖ / ‖B‖ and the method.
+std::pair<double, std::string> petsc_solve(const std::string& options, const std::string& prefix) {
+  const SparseMatrix A = throng::test::random_objective(300, 41);
+  const SparseMatrix Q = SparseMatrix(A.transpose()) * A;
+  const Eigen::MatrixXd B = throng::test::random_matrix(300, 2, 42);
+  SolverOptions o;
+  o.backend = "petsc";
+  o.petsc_options = options;
+  o.petsc_prefix = prefix;  // one prefix per case: options inserted for one case do not reach the next
+  auto solver = make_spd_solver(o);
+  solver->analyze(Q);
+  solver->factorize(Q);
+  Eigen::MatrixXd X(300, 2);
+  solver->solve(B, X);
+  return {(Q * X - B).norm() / B.norm(), solver->factorization_info().method};
+}
+
+bool has_petsc() {
+  const auto names = available_backends();
+  return std::find(names.begin(), names.end(), "petsc") != names.end();
+}
+
+}  // namespace
+
+TEST_CASE("the petsc backend takes other Krylov methods and additive Schwarz on METIS parts") {
+  if (!has_petsc()) {
+    WARN("no PETSc in this build: skipped");
+    return;
+  }
+  // CG's default test is on the true residual at 1e-12; cond(Q) ≈ 1e2 (problems.h) keeps other methods' own
+  // (preconditioned) norms within a factor cond of it.
+  const auto [cg, cg_method] = petsc_solve("", "t_cg_");
+  CHECK(cg < 1e-11);
+  CHECK_THAT(cg_method, Catch::Matchers::Contains("cg + gamg on 1 rank"));
+  // MINRES supports only the preconditioned norm: the backend must not force the unpreconditioned one on it.
+  const auto [minres, minres_method] = petsc_solve("-ksp_type minres", "t_minres_");
+  CHECK(minres < 1e-9);
+  CHECK_THAT(minres_method, Catch::Matchers::Contains("minres"));
+  // ASM with ICC blocks, one block per METIS part of this rank.
+  const auto [schwarz, schwarz_method] = petsc_solve("-pc_type asm -sub_pc_type icc -parts_per_rank 4", "t_asm_");
+  CHECK(schwarz < 1e-11);
+  CHECK_THAT(schwarz_method, Catch::Matchers::Contains("asm") && Catch::Matchers::Contains("4 METIS parts"));
+}
+
+TEST_CASE("bad PETSc options are configuration errors naming them") {
+  if (!has_petsc()) {
+    WARN("no PETSc in this build: skipped");
+    return;
+  }
+  for (const std::string options : {"-ksp_type bogus", "-pc_type nonsense", "-parts_per_rank 0"}) {
+    CAPTURE(options);
+    try {
+      (void)petsc_solve(options, "t_bad" + std::to_string(options.size()) + "_");
+      FAIL("accepted");
+    } catch (const throng::ConfigError& e) {
+      CHECK(e.exit_code() == throng::ExitCode::usage);
+    }
   }
 }

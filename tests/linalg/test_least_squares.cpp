@@ -17,9 +17,25 @@ using Eigen::Index;
 
 namespace {
 
-// Problems here have cond(AᵀWA) ≈ 1e2 (n = 60) and the KKT reference adds its own rounding: agreement to
-// 1e-10 relative leaves three orders of margin above ε·cond while catching any wrong term (errors are O(1)).
-constexpr double agree = 1e-10;
+// Every test runs once per backend of this build ("eigen and petsc agree on every test system").
+// Problems here have cond(AᵀWA) ≈ 1e2 (n = 60) and the KKT reference adds its own rounding. The direct backend:
+// agreement to 1e-10 relative leaves three orders of margin above ε·cond while catching any wrong term (errors
+// are O(1)). The iterative backend stops at a relative residual of 1e-12, so its error is ≤ cond · 1e-12 ≈ 1e-10
+// on the unknowns, amplified once more through the Schur complement built from such solves: 1e-8.
+struct Backend {
+  std::string name;
+  SolverOptions options;
+  double agree = 1e-10;
+  [[nodiscard]] bool direct() const { return name == "eigen"; }
+};
+
+Backend backend_under_test() {
+  Backend b;
+  b.name = GENERATE(from_range(throng::linalg::available_backends()));
+  b.options.backend = b.name;
+  if (!b.direct()) b.agree = 1e-8;
+  return b;
+}
 
 double relative_gap(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y) {
   return (x - y).cwiseAbs().maxCoeff() / (1.0 + y.cwiseAbs().maxCoeff());
@@ -49,41 +65,49 @@ struct Fixture {
 }  // namespace
 
 TEST_CASE("unconstrained least squares matches the dense normal equations") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, f.b, {}, Eigen::MatrixXd(0, 1),
-                                                                SparseMatrix(0, f.n), Eigen::MatrixXd(0, 1));
+                                                                SparseMatrix(0, f.n), Eigen::MatrixXd(0, 1), be.options);
   const Eigen::VectorXd ref = dense_reference(f.A, f.w, f.b, {}, {}, Eigen::MatrixXd(0, f.n), {});
-  CHECK(relative_gap(x, ref) < agree);
+  CHECK(relative_gap(x, ref) < be.agree);
 }
 
 TEST_CASE("pins and general constraints match the dense KKT solution and are met") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(f.C));
   const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, f.d);
   const Eigen::VectorXd ref = dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d);
-  CHECK(relative_gap(x, ref) < agree);
+  CHECK(relative_gap(x, ref) < be.agree);
   for (std::size_t k = 0; k < f.pinned.size(); ++k) CHECK(x(f.pinned[k], 0) == f.pin_values[static_cast<Index>(k)]);
   CHECK((f.C * x - f.d).cwiseAbs().maxCoeff() < 1e-12);
   CHECK(solver.report().constraint_rank == 2);
 }
 
 TEST_CASE("a manufactured solution is recovered exactly") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   const Eigen::VectorXd truth = random_matrix(f.n, 1, 9);
   const Eigen::VectorXd b = f.A * truth;
   Eigen::VectorXd pins(3);
   for (int k = 0; k < 3; ++k) pins[k] = truth[f.pinned[static_cast<std::size_t>(k)]];
   const Eigen::VectorXd d = f.C * truth;
-  const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d);
-  CHECK(relative_gap(x, truth) < agree);
+  const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d, be.options);
+  CHECK(relative_gap(x, truth) < be.agree);
 }
 
 TEST_CASE("new right-hand sides, pin values and constraint values reuse the factorisation") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(f.C));
@@ -97,10 +121,12 @@ TEST_CASE("new right-hand sides, pin values and constraint values reuse the fact
     const Eigen::VectorXd pins = random_matrix(3, 1, 200 + drag);
     const Eigen::VectorXd d = random_matrix(2, 1, 300 + drag);
     const Eigen::MatrixXd x = solver.solve(b, pins, d);
-    // The reused factorisation gives the same bits as a fresh solver.
-    const Eigen::MatrixXd fresh = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d);
-    CHECK(x == fresh);
-    CHECK(relative_gap(x, dense_reference(f.A, f.w, b, f.pinned, pins, f.C, d)) < agree);
+    // The reused factorisation gives the same bits as a fresh solver (direct); the iterative backend starts
+    // each drag from the last solution, so it agrees to its tolerance.
+    const Eigen::MatrixXd fresh = throng::linalg::solve_least_squares(f.A, f.w, b, f.pinned, pins, sparse(f.C), d, be.options);
+    if (be.direct()) CHECK(x == fresh);
+    else CHECK(relative_gap(x, fresh) < be.agree);
+    CHECK(relative_gap(x, dense_reference(f.A, f.w, b, f.pinned, pins, f.C, d)) < be.agree);
   }
   CHECK(solver.report().analyses == 1);
   CHECK(solver.report().factorizations == 1);
@@ -108,8 +134,10 @@ TEST_CASE("new right-hand sides, pin values and constraint values reuse the fact
 }
 
 TEST_CASE("several right-hand sides at once equal one at a time") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(f.C));
@@ -119,13 +147,15 @@ TEST_CASE("several right-hand sides at once equal one at a time") {
   const Eigen::MatrixXd X = solver.solve(B, P, D);
   for (Index c = 0; c < 3; ++c) {
     const Eigen::MatrixXd one = solver.solve(B.col(c), P.col(c), D.col(c));
-    CHECK(relative_gap(X.col(c), one) < 1e-14);
+    CHECK(relative_gap(X.col(c), one) < (be.direct() ? 1e-14 : be.agree));
   }
 }
 
 TEST_CASE("added constraints cost back-substitutions, not a refactorisation") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(f.C.topRows(1)));
@@ -137,27 +167,31 @@ TEST_CASE("added constraints cost back-substitutions, not a refactorisation") {
   CHECK(solver.report().factorizations == 1);
   CHECK(solver.report().analyses == 1);
   CHECK(solver.report().schur_columns == columns_before + 1);
-  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < agree);
+  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < be.agree);
 
   solver.clear_constraints();
   const Eigen::MatrixXd free = solver.solve(f.b, f.pin_values, Eigen::MatrixXd(0, 1));
   CHECK(solver.report().factorizations == 1);
-  CHECK(relative_gap(free, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < agree);
+  CHECK(relative_gap(free, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < be.agree);
 }
 
 TEST_CASE("without the Schur cache the answer is the same") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  SolverOptions no_cache;
+  SolverOptions no_cache = be.options;
   no_cache.schur_cache_megabytes = 0;
-  const Eigen::MatrixXd cached = throng::linalg::solve_least_squares(f.A, f.w, f.b, f.pinned, f.pin_values, sparse(f.C), f.d);
+  const Eigen::MatrixXd cached = throng::linalg::solve_least_squares(f.A, f.w, f.b, f.pinned, f.pin_values, sparse(f.C), f.d, be.options);
   const Eigen::MatrixXd uncached =
       throng::linalg::solve_least_squares(f.A, f.w, f.b, f.pinned, f.pin_values, sparse(f.C), f.d, no_cache);
-  CHECK(relative_gap(uncached, cached) < agree);
+  CHECK(relative_gap(uncached, cached) < be.agree);
 }
 
 TEST_CASE("new weights refactorise without a new analysis and a new pinned set analyses again") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.precompute();
@@ -166,34 +200,38 @@ TEST_CASE("new weights refactorise without a new analysis and a new pinned set a
   const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, Eigen::MatrixXd(0, 1));
   CHECK(solver.report().analyses == 1);
   CHECK(solver.report().factorizations == 2);
-  CHECK(relative_gap(x, dense_reference(f.A, w2, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < agree);
+  CHECK(relative_gap(x, dense_reference(f.A, w2, f.b, f.pinned, f.pin_values, Eigen::MatrixXd(0, f.n), {})) < be.agree);
 
   solver.set_pinned({0, 1});
   const Eigen::MatrixXd y = solver.solve(f.b, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, 1));
   CHECK(solver.report().analyses == 2);
-  CHECK(relative_gap(y, dense_reference(f.A, w2, f.b, {0, 1}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, f.n), {})) < agree);
+  CHECK(relative_gap(y, dense_reference(f.A, w2, f.b, {0, 1}, Eigen::Vector2d(1, 2), Eigen::MatrixXd(0, f.n), {})) < be.agree);
 }
 
 TEST_CASE("redundant but consistent constraints are accepted") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   Eigen::MatrixXd C(3, f.n);
   C << f.C, 3.0 * f.C.row(0);  // the third row is the first, scaled
   const Eigen::Vector3d d(f.d[0], f.d[1], 3.0 * f.d[0]);
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(C));
   const Eigen::MatrixXd x = solver.solve(f.b, f.pin_values, d);
   CHECK(solver.report().constraint_rank == 2);
-  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < agree);
+  CHECK(relative_gap(x, dense_reference(f.A, f.w, f.b, f.pinned, f.pin_values, f.C, f.d)) < be.agree);
 }
 
 TEST_CASE("contradictory constraints are a ConstraintError naming the rows") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   Eigen::MatrixXd C(3, f.n);
   C << f.C, f.C.row(0);
   const Eigen::Vector3d d(f.d[0], f.d[1], f.d[0] + 1.0);  // x5 − x6 = 0.25 and x5 − x6 = 1.25
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(C));
@@ -209,10 +247,12 @@ TEST_CASE("contradictory constraints are a ConstraintError naming the rows") {
 }
 
 TEST_CASE("a constraint on pinned unknowns that disagrees with the pins is a ConstraintError") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(1, f.n);
   C(0, 3) = 1.0;  // x3 is pinned
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned(f.pinned);
   solver.set_constraints(sparse(C));
@@ -222,6 +262,8 @@ TEST_CASE("a constraint on pinned unknowns that disagrees with the pins is a Con
 }
 
 TEST_CASE("an undetermined unknown is a singular system naming it") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   // A graph Laplacian of a path (differences of neighbours): translation is free until something is pinned.
   const Index n = 30;
   std::vector<Eigen::Triplet<double>> t;
@@ -234,14 +276,28 @@ TEST_CASE("an undetermined unknown is a singular system naming it") {
   const Eigen::VectorXd w = Eigen::VectorXd::Ones(n - 1);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(n - 1);
 
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(A, w);
-  CHECK_THROWS_AS(solver.precompute(), SingularMatrixError);
+  if (be.direct()) {
+    CHECK_THROWS_AS(solver.precompute(), SingularMatrixError);
+  } else {
+    // An iterative backend sees only what the Krylov method sees: Q is positive semidefinite with a positive
+    // diagonal and AᵀWb lies in its range, so CG may stop at one of the minimisers, or report the system.
+    try {
+      const Eigen::MatrixXd any = solver.solve(b, Eigen::MatrixXd(0, 1), Eigen::MatrixXd(0, 1));
+      CHECK((SparseMatrix(A.transpose()) * (A * any - b)).cwiseAbs().maxCoeff() < 1e-9);
+    } catch (const throng::NumericalError& e) {
+      CHECK_THAT(e.what(), Catch::Matchers::Contains("singular") || Catch::Matchers::Contains("did not converge"));
+    }
+  }
   solver.set_pinned({0});
   const Eigen::MatrixXd x = solver.solve(b, Eigen::VectorXd::Constant(1, 2.0), Eigen::MatrixXd(0, 1));
-  for (Index i = 0; i < n; ++i) CHECK_THAT(x(i, 0), Catch::Matchers::WithinAbs(2.0 + static_cast<double>(i), 1e-12));
+  // Pinned at one end the path's Q has cond ≈ (4n/π)² ≈ 1.5e3: CG's 1e-12 relative residual allows
+  // cond · 1e-12 · ‖x‖ (‖x‖ ≈ 31) ≈ 5e-8 on the unknowns.
+  const double tolerance = be.direct() ? 1e-12 : 1e-7;
+  for (Index i = 0; i < n; ++i) CHECK_THAT(x(i, 0), Catch::Matchers::WithinAbs(2.0 + static_cast<double>(i), tolerance));
 
-  // An unknown that no row mentions.
+  // An unknown that no row mentions: a zero diagonal, found by every backend before solving.
   SparseMatrix wider(n - 1, n + 1);
   wider.leftCols(n) = A;
   solver.set_objective(wider, w);
@@ -256,18 +312,22 @@ TEST_CASE("an undetermined unknown is a singular system naming it") {
 }
 
 TEST_CASE("everything pinned needs no factorisation") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
   std::vector<Index> all(static_cast<std::size_t>(f.n));
   for (Index i = 0; i < f.n; ++i) all[static_cast<std::size_t>(i)] = i;
   const Eigen::VectorXd values = random_matrix(f.n, 1, 5);
   const Eigen::MatrixXd x = throng::linalg::solve_least_squares(f.A, f.w, f.b, all, values, SparseMatrix(0, f.n),
-                                                                Eigen::MatrixXd(0, 1));
+                                                                Eigen::MatrixXd(0, 1), be.options);
   CHECK(x == values);
 }
 
 TEST_CASE("malformed calls are rejected before any work") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   Fixture f;
-  ConstrainedLeastSquares solver;
+  ConstrainedLeastSquares solver(be.options);
   solver.set_objective(f.A, f.w);
   solver.set_pinned({3, 3});
   CHECK_THROWS_AS(solver.precompute(), std::invalid_argument);
@@ -279,6 +339,8 @@ TEST_CASE("malformed calls are rejected before any work") {
 }
 
 TEST_CASE("complex pairs: the complex factorisation gives the real one's answer, and odd pins fall back") {
+  const Backend be = backend_under_test();
+  CAPTURE(be.name);
   // A complex-linear objective over 40 complex unknowns written in real form: each complex row a·z gives the
   // real rows [Re a, −Im a; Im a, Re a] on the interleaved pair.
   const Index pairs = 40;
@@ -307,7 +369,7 @@ TEST_CASE("complex pairs: the complex factorisation gives the real one's answer,
 
   for (const std::vector<Index>& pinned : {std::vector<Index>{4, 5, 20, 21}, std::vector<Index>{4, 5, 21}}) {
     const Eigen::VectorXd pins = random_matrix(static_cast<Index>(pinned.size()), 1, 62);
-    ConstrainedLeastSquares real, complex;
+    ConstrainedLeastSquares real(be.options), complex(be.options);
     real.set_objective(A, w);
     real.set_pinned(pinned);
     complex.set_objective(A, w);
@@ -316,9 +378,11 @@ TEST_CASE("complex pairs: the complex factorisation gives the real one's answer,
     const Eigen::MatrixXd x_real = real.solve(b, pins, Eigen::MatrixXd(0, 1));
     const Eigen::MatrixXd x_complex = complex.solve(b, pins, Eigen::MatrixXd(0, 1));
     CAPTURE(pinned.size());
-    CHECK(relative_gap(x_complex, x_real) < agree);
+    CHECK(relative_gap(x_complex, x_real) < be.agree);
     const bool whole_pairs = pinned.size() % 2 == 0;
-    CHECK_THAT(complex.report().factorization.method,
-               Catch::Matchers::Contains(whole_pairs ? "complex LLᴴ" : "LLᵀ"));
+    if (be.direct()) {
+      CHECK_THAT(complex.report().factorization.method,
+                 Catch::Matchers::Contains(whole_pairs ? "complex LLᴴ" : "LLᵀ"));
+    }
   }
 }

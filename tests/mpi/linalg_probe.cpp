@@ -1,6 +1,8 @@
-// A small SPMD program for the MPI tests (run as `mpiexec -np K linalg_probe`): checks the collectives of
-// throng/linalg/mpi.h and that the petsc backend, distributed over the ranks, agrees with the eigen backend on
-// a constrained least-squares problem. Prints one line per check; exits 1 on the first failure.
+// A small SPMD program for the MPI tests (run as `mpiexec -np K linalg_probe [independent]`): checks the
+// collectives of throng/linalg/mpi.h and that the petsc backend, distributed over the ranks (by METIS parts,
+// with GAMG and with additive Schwarz on the parts), agrees with the eigen backend on a constrained
+// least-squares problem. With `independent` (a farm: mpi::use_ranks_independently) every rank solves alone and
+// the backend must say so. Prints one line per check; exits 1 on the first failure.
 #include "../linalg/problems.h"
 
 #include <throng/linalg/least_squares.h>
@@ -22,9 +24,11 @@ void require(bool ok, const std::string& what) {
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   using namespace throng;
   try {
+    const bool independent = argc > 1 && std::string(argv[1]) == "independent";
+    if (independent) mpi::use_ranks_independently();
     rank = mpi::rank();
     const int size = mpi::size();
     require(mpi::is_initialized() == mpi::launched_by_mpiexec(), "MPI starts by itself under mpiexec only");
@@ -63,17 +67,27 @@ int main() {
     const Eigen::MatrixXd d = test::random_matrix(2, 2, 35);
 
     const Eigen::MatrixXd direct = linalg::solve_least_squares(A, w, b, pinned, pins, C, d);
-    linalg::SolverOptions petsc;
-    petsc.backend = "petsc";
-    linalg::ConstrainedLeastSquares solver(petsc);
-    solver.set_objective(A, w);
-    solver.set_pinned(pinned);
-    solver.set_constraints(C);
-    const Eigen::MatrixXd iterative = solver.solve(b, pins, d);
-    // Residual ≤ 1e-12 relative and cond(Q) ≈ 1e2 bound the error near 1e-10; 1e-8 leaves margin.
-    const double gap = (iterative - direct).cwiseAbs().maxCoeff() / (1.0 + direct.cwiseAbs().maxCoeff());
-    if (rank == 0) std::printf("method %s, gap %.3g\n", solver.report().factorization.method.c_str(), gap);
+    auto petsc_solve = [&](const std::string& options, const std::string& prefix) {
+      linalg::SolverOptions petsc;
+      petsc.backend = "petsc";
+      petsc.petsc_options = options;
+      petsc.petsc_prefix = prefix;
+      linalg::ConstrainedLeastSquares solver(petsc);
+      solver.set_objective(A, w);
+      solver.set_pinned(pinned);
+      solver.set_constraints(C);
+      Eigen::MatrixXd x = solver.solve(b, pins, d);
+      // Residual ≤ 1e-12 relative and cond(Q) ≈ 1e2 bound the error near 1e-10; 1e-8 leaves margin.
+      const double gap = (x - direct).cwiseAbs().maxCoeff() / (1.0 + direct.cwiseAbs().maxCoeff());
+      if (rank == 0) std::printf("method %s, gap %.3g\n", solver.report().factorization.method.c_str(), gap);
+      const std::string ranks_said = independent || size == 1 ? "on 1 rank" : "on " + std::to_string(size) + " ranks";
+      require(solver.report().factorization.method.find(ranks_said) != std::string::npos, "the backend runs " + ranks_said);
+      return std::make_pair(x, gap);
+    };
+    const auto [iterative, gap] = petsc_solve("", "throng_");
     require(gap < 1e-8, "petsc agrees with eigen");
+    const auto [schwarz, schwarz_gap] = petsc_solve("-pc_type asm -sub_pc_type icc -parts_per_rank 2", "asm_");
+    require(schwarz_gap < 1e-8, "petsc with additive Schwarz on the parts agrees with eigen");
     // Every rank holds the whole, identical solution.
     const auto all = mpi::all_gather(std::span<const double>(iterative.data(), static_cast<std::size_t>(iterative.size())));
     bool same = true;

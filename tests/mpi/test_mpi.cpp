@@ -12,14 +12,14 @@
 namespace {
 
 // Runs a probe under mpiexec with `ranks` processes and returns its output; "SKIP" when mpiexec is absent.
-std::string run_probe(int ranks, const std::string& probe = THRONG_LINALG_PROBE) {
+std::string run_probe(int ranks, const std::string& probe = THRONG_LINALG_PROBE, const std::string& args = "") {
   const std::string mpiexec = throng::test::mpiexec();
   if (mpiexec.empty()) return "SKIP";
   std::string output;
   // OpenMPI refuses root unless both variables are set (CI runs as root); set here, as the test's ENVIRONMENT
   // property may carry only one of them.
   const std::string command = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + mpiexec + " -np " +
-                              std::to_string(ranks) + " --oversubscribe " + probe;
+                              std::to_string(ranks) + " --oversubscribe " + probe + args;
   const int status = throng::test::run_command(command, &output);
   INFO(command << "\n" << output);
   CHECK(status == 0);
@@ -44,6 +44,18 @@ TEST_CASE("collectives and the petsc backend on 2 ranks") {
     return;
   }
   CHECK_THAT(out, Catch::Matchers::Contains("ranks 2") && Catch::Matchers::Contains("ok every rank has the same solution"));
+}
+
+TEST_CASE("independent ranks (a farm): each rank's petsc solve runs on that rank alone") {
+  const std::string out = run_probe(2, THRONG_LINALG_PROBE, " independent");
+  if (out == "SKIP") {
+    WARN("mpiexec not found: MPI test skipped");
+    return;
+  }
+  CHECK_THAT(out, Catch::Matchers::Contains("ranks 2") && Catch::Matchers::Contains("ok the backend runs on 1 rank") &&
+                      Catch::Matchers::Contains("ok petsc agrees with eigen") &&
+                      Catch::Matchers::Contains("ok every rank has the same solution"));
+  CHECK_THAT(out, !Catch::Matchers::Contains("on 2 ranks"));
 }
 
 TEST_CASE("without mpiexec nothing starts MPI until asked, and the petsc backend still works") {

@@ -1,15 +1,27 @@
-// The distributed backend: PETSc KSP over the ranks of PETSC_COMM_WORLD (MFEM linalg/petsc.hpp style: PETSc types
-// stay in this file, options through a per-solver prefix; PETSc ex2.c style: every call checked,
-// KSPSetFromOptions last so run-time flags win).
+// The distributed backend: PETSc KSP over the ranks of PETSc's own communicator, PETSC_COMM_WORLD (MFEM
+// linalg/petsc.hpp style: PETSc types stay in this file, options through a per-solver prefix; PETSc ex2.c style:
+// every call checked, KSPSetFromOptions last so run-time flags win).
 //
-// Data layout: every rank holds the same (replicated) matrix and right-hand sides, as the callers build the
-// whole problem on every rank; each rank inserts its own block of rows into an MPIAIJ matrix and receives the
-// whole solution after each solve. Defaults: conjugate gradients with PETSc's algebraic multigrid (GAMG), the
-// convergence test on the true (unpreconditioned) residual, block size and near null space from the caller's
-// hint (see bench/linalg for the measurements behind the choice).
+// Ranks: PETSC_COMM_WORLD is MPI_COMM_WORLD for a distributed solve and MPI_COMM_SELF in a farm
+// (mpi::use_ranks_independently: each rank solves its own jobs alone), so ranks and row ranges come from that
+// communicator, never from MPI_COMM_WORLD.
+//
+// Data layout (petsc_layout.h): the unknowns are renumbered by part: METIS splits the matrix's node graph
+// into one part per rank (and each of those into -<prefix>parts_per_rank sub-parts, the subdomains of additive
+// Schwarz), parts are dealt to ranks, and each rank owns the contiguous rows of its parts. Each rank inserts
+// only its own rows (columns mapped to the part order) into an MPIAIJ matrix; the callers (least_squares.h)
+// still build the whole matrix on every rank, as the SpdSolver interface hands the whole matrix to every rank.
+// After each solve every rank receives the whole solution, back in the caller's order.
+//
+// Defaults: conjugate gradients with PETSc's algebraic multigrid (GAMG), one part per rank, the convergence
+// test on the true (unpreconditioned) residual for CG (other Krylov methods keep their own norm: MINRES, for
+// one, supports only the preconditioned norm), block size and near null space from the caller's hint.
+// Additive Schwarz on the parts is one option away: -pc_type asm -sub_pc_type icc -parts_per_rank K (one
+// subdomain per METIS part, PCASM's overlap 1).
 #include "backends.h"
 #include "blas_threads.h"
 #include "petsc_check.h"
+#include "petsc_layout.h"
 
 #include <throng/core/errors.h>
 #include <throng/linalg/mpi.h>
@@ -19,6 +31,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -40,6 +53,13 @@ std::string prefixed(const std::string& options, const std::string& prefix) {
   return out;
 }
 
+void broadcast_ints(std::vector<int>& data, MPI_Comm comm) {
+  int n = static_cast<int>(data.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, comm);
+  data.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(data.data(), n, MPI_INT, 0, comm);
+}
+
 class PetscSpdSolver final : public SpdSolver {
  public:
   explicit PetscSpdSolver(const SolverOptions& options) : options_(options) {
@@ -59,7 +79,7 @@ class PetscSpdSolver final : public SpdSolver {
       near_null_.resize(0, 0);
       return;
     }
-    // PETSc wants orthonormal vectors.
+    // PETSc wants orthonormal vectors (the part order only permutes rows: still orthonormal).
     Eigen::HouseholderQR<Eigen::MatrixXd> qr(modes);
     near_null_ = qr.householderQ() * Eigen::MatrixXd::Identity(modes.rows(), modes.cols());
   }
@@ -67,27 +87,48 @@ class PetscSpdSolver final : public SpdSolver {
   void analyze(const SparseMatrix& matrix) override {
     if (matrix.rows() != matrix.cols()) throw std::invalid_argument("SpdSolver: the matrix is not square");
     destroy();
+    const MPI_Comm comm = PETSC_COMM_WORLD;
+    MPI_Comm_rank(comm, &rank_);
+    MPI_Comm_size(comm, &ranks_);
     n_ = static_cast<PetscInt>(matrix.rows());
     const int bs = (block_size_ > 1 && n_ % block_size_ == 0) ? block_size_ : 1;
-    // Contiguous blocks of rows per rank, whole nodes of `bs` unknowns each.
-    const PetscInt nodes = n_ / bs;
-    const int ranks = mpi::size();
-    const int me = mpi::rank();
-    const PetscInt per = nodes / ranks;
-    const PetscInt extra = nodes % ranks;
-    begin_ = bs * (me * per + std::min<PetscInt>(me, extra));
-    end_ = begin_ + bs * (per + (me < extra ? 1 : 0));
+
+    // The user's options first: parts_per_rank decides the layout.
+    if (!options_.petsc_options.empty()) {
+      THRONG_PETSC_CHECK(PetscOptionsInsertString(nullptr, prefixed(options_.petsc_options, options_.petsc_prefix).c_str()));
+    }
+    PetscInt parts_per_rank = 1;
+    PetscBool given = PETSC_FALSE;
+    THRONG_PETSC_CHECK(PetscOptionsGetInt(nullptr, options_.petsc_prefix.c_str(), "-parts_per_rank", &parts_per_rank, &given));
+    if (parts_per_rank < 1 || parts_per_rank > 100000) {
+      throw ConfigError("PETSc option -" + options_.petsc_prefix + "parts_per_rank " + std::to_string(parts_per_rank) +
+                        " is outside [1, 100000]");
+    }
+
+    // The part layout, made on rank 0 and sent to the others (every rank then holds the same numbering).
+    if (rank_ == 0) layout_ = petsc::part_layout(matrix, bs, ranks_, static_cast<int>(parts_per_rank));
+    if (ranks_ > 1) {
+      broadcast_ints(layout_.new_of, comm);
+      broadcast_ints(layout_.rank_begin, comm);
+      broadcast_ints(layout_.part_begin, comm);
+      broadcast_ints(layout_.part_rank, comm);
+      layout_.old_of.assign(layout_.new_of.size(), 0);
+      for (std::size_t i = 0; i < layout_.new_of.size(); ++i) layout_.old_of[static_cast<std::size_t>(layout_.new_of[i])] = static_cast<int>(i);
+    }
+    begin_ = layout_.rank_begin[static_cast<std::size_t>(rank_)];
+    end_ = layout_.rank_begin[static_cast<std::size_t>(rank_) + 1];
 
     std::vector<PetscInt> diagonal(static_cast<std::size_t>(end_ - begin_), 0);
     std::vector<PetscInt> off_diagonal(diagonal.size(), 0);
     for (PetscInt row = begin_; row < end_; ++row) {
-      // Symmetric: column `row` holds row `row`.
-      for (SparseMatrix::InnerIterator it(matrix, row); it; ++it) {
-        const bool local = it.row() >= begin_ && it.row() < end_;
+      // Symmetric: column old(row) holds row old(row).
+      for (SparseMatrix::InnerIterator it(matrix, old_of(row)); it; ++it) {
+        const PetscInt column = new_of(it.row());
+        const bool local = column >= begin_ && column < end_;
         ++(local ? diagonal : off_diagonal)[static_cast<std::size_t>(row - begin_)];
       }
     }
-    THRONG_PETSC_CHECK(MatCreate(PETSC_COMM_WORLD, &matrix_));
+    THRONG_PETSC_CHECK(MatCreate(comm, &matrix_));
     THRONG_PETSC_CHECK(MatSetSizes(matrix_, end_ - begin_, end_ - begin_, n_, n_));
     THRONG_PETSC_CHECK(MatSetType(matrix_, MATAIJ));
     THRONG_PETSC_CHECK(MatSetBlockSize(matrix_, bs));
@@ -99,19 +140,16 @@ class PetscSpdSolver final : public SpdSolver {
     THRONG_PETSC_CHECK(MatCreateVecs(matrix_, &x_, &b_));
     THRONG_PETSC_CHECK(VecScatterCreateToAll(x_, &to_all_, &x_all_));
 
-    THRONG_PETSC_CHECK(KSPCreate(PETSC_COMM_WORLD, &ksp_));
+    THRONG_PETSC_CHECK(KSPCreate(comm, &ksp_));
     THRONG_PETSC_CHECK(KSPSetOptionsPrefix(ksp_, options_.petsc_prefix.c_str()));
     THRONG_PETSC_CHECK(KSPSetType(ksp_, KSPCG));
     PC pc = nullptr;
     THRONG_PETSC_CHECK(KSPGetPC(ksp_, &pc));
     THRONG_PETSC_CHECK(PCSetType(pc, PCGAMG));
-    THRONG_PETSC_CHECK(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED));
     THRONG_PETSC_CHECK(KSPSetTolerances(ksp_, options_.relative_tolerance, 1e-300, PETSC_DEFAULT,
                                         static_cast<PetscInt>(options_.max_iterations)));
-    if (!options_.petsc_options.empty()) {
-      THRONG_PETSC_CHECK(PetscOptionsInsertString(nullptr, prefixed(options_.petsc_options, options_.petsc_prefix).c_str()));
-    }
-    THRONG_PETSC_CHECK(KSPSetFromOptions(ksp_));
+    set_from_options();
+    set_subdomains(pc);
     info_ = {};
   }
 
@@ -121,18 +159,30 @@ class PetscSpdSolver final : public SpdSolver {
     THRONG_PETSC_CHECK(MatZeroEntries(matrix_));
     std::vector<PetscInt> columns;
     std::vector<PetscScalar> values;
+    // A diagonal entry ≤ 0 cannot be SPD (an unknown no row of the objective reaches): say so before the Krylov
+    // method turns it into NaN. The smallest such unknown over all ranks, so every rank throws together.
+    int bad = std::numeric_limits<int>::max();
     for (PetscInt row = begin_; row < end_; ++row) {
       columns.clear();
       values.clear();
-      for (SparseMatrix::InnerIterator it(matrix, row); it; ++it) {
-        columns.push_back(static_cast<PetscInt>(it.row()));
+      const Eigen::Index old = old_of(row);
+      double diagonal = 0;
+      for (SparseMatrix::InnerIterator it(matrix, old); it; ++it) {
+        columns.push_back(new_of(it.row()));
         values.push_back(it.value());
+        if (it.row() == old) diagonal = it.value();
       }
+      if (!(diagonal > 0)) bad = std::min(bad, static_cast<int>(old));
       THRONG_PETSC_CHECK(MatSetValues(matrix_, 1, &row, static_cast<PetscInt>(columns.size()), columns.data(),
                                       values.data(), INSERT_VALUES));
     }
     THRONG_PETSC_CHECK(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY));
     THRONG_PETSC_CHECK(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY));
+    if (ranks_ > 1) MPI_Allreduce(MPI_IN_PLACE, &bad, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+    if (bad != std::numeric_limits<int>::max()) {
+      throw SingularMatrixError("PETSc: the matrix is singular or not positive definite: row " + std::to_string(bad) +
+                                " has no positive diagonal entry", bad);
+    }
     attach_near_null_space();
     THRONG_PETSC_CHECK(KSPSetOperators(ksp_, matrix_, matrix_));
     THRONG_PETSC_CHECK(KSPSetUp(ksp_));
@@ -143,8 +193,10 @@ class PetscSpdSolver final : public SpdSolver {
     THRONG_PETSC_CHECK(KSPGetType(ksp_, &ksp_type));
     THRONG_PETSC_CHECK(KSPGetPC(ksp_, &pc));
     THRONG_PETSC_CHECK(PCGetType(pc, &pc_type));
+    const int parts = static_cast<int>(layout_.part_rank.size());
     info_.method = std::string("PETSc ") + (ksp_type ? ksp_type : "?") + " + " + (pc_type ? pc_type : "?") + " on " +
-                   std::to_string(mpi::size()) + (mpi::size() == 1 ? " rank" : " ranks");
+                   std::to_string(ranks_) + (ranks_ == 1 ? " rank" : " ranks") +
+                   (parts > 1 ? " (" + std::to_string(parts) + " METIS parts)" : "");
   }
 
   void solve(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution) override {
@@ -159,6 +211,51 @@ class PetscSpdSolver final : public SpdSolver {
   [[nodiscard]] const SolveInfo& solve_info() const override { return solve_info_; }
 
  private:
+  [[nodiscard]] PetscInt new_of(Eigen::Index old) const {
+    return layout_.new_of.empty() ? static_cast<PetscInt>(old) : layout_.new_of[static_cast<std::size_t>(old)];
+  }
+  [[nodiscard]] Eigen::Index old_of(PetscInt row) const {
+    return layout_.old_of.empty() ? row : layout_.old_of[static_cast<std::size_t>(row)];
+  }
+
+  // KSPSetFromOptions with the user's options (PETSC_OPTIONS and solver.petsc_options): an unknown type or a
+  // malformed value there is the user's configuration, not a numerical failure. Then the norm: CG tests the
+  // true residual unless the user chose a norm; other methods keep their default.
+  void set_from_options() {
+    try {
+      THRONG_PETSC_CHECK(KSPSetFromOptions(ksp_));
+    } catch (const NumericalError& e) {
+      throw ConfigError(std::string("the PETSc options (solver.petsc_options '") + options_.petsc_options +
+                        "', PETSC_OPTIONS, prefix " + options_.petsc_prefix + ") are not valid: " + e.what());
+    }
+    KSPType type = nullptr;
+    THRONG_PETSC_CHECK(KSPGetType(ksp_, &type));
+    PetscBool norm_given = PETSC_FALSE;
+    THRONG_PETSC_CHECK(PetscOptionsHasName(nullptr, options_.petsc_prefix.c_str(), "-ksp_norm_type", &norm_given));
+    PetscBool cg = PETSC_FALSE;
+    THRONG_PETSC_CHECK(PetscStrcmp(type, KSPCG, &cg));
+    if (cg && !norm_given) THRONG_PETSC_CHECK(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED));
+  }
+
+  // Additive Schwarz on the parts: this rank's parts are its subdomains (PCASM's overlap then extends each).
+  void set_subdomains(PC pc) {
+    PetscBool asm_pc = PETSC_FALSE;
+    THRONG_PETSC_CHECK(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCASM, &asm_pc));
+    if (!asm_pc) return;
+    std::vector<IS> subdomains;
+    for (std::size_t p = 0; p < layout_.part_rank.size(); ++p) {
+      if (layout_.part_rank[p] != rank_) continue;
+      IS is = nullptr;
+      THRONG_PETSC_CHECK(ISCreateStride(PETSC_COMM_SELF, layout_.part_begin[p + 1] - layout_.part_begin[p],
+                                        layout_.part_begin[p], 1, &is));
+      subdomains.push_back(is);
+    }
+    if (!subdomains.empty()) {
+      THRONG_PETSC_CHECK(PCASMSetLocalSubdomains(pc, static_cast<PetscInt>(subdomains.size()), subdomains.data(), nullptr));
+    }
+    for (IS& is : subdomains) THRONG_PETSC_CHECK(ISDestroy(&is));
+  }
+
   void solve_columns(const Eigen::Ref<const Eigen::MatrixXd>& rhs, Eigen::Ref<Eigen::MatrixXd> solution, bool from_guess) {
     assert(ksp_ != nullptr && "factorize() before solve()");
     const BlasThreadScope threads(options_.blas_threads);
@@ -166,11 +263,11 @@ class PetscSpdSolver final : public SpdSolver {
     for (Eigen::Index c = 0; c < rhs.cols(); ++c) {
       PetscScalar* local = nullptr;
       THRONG_PETSC_CHECK(VecGetArrayWrite(b_, &local));
-      for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = rhs(i, c);
+      for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = rhs(old_of(i), c);
       THRONG_PETSC_CHECK(VecRestoreArrayWrite(b_, &local));
       if (from_guess) {
         THRONG_PETSC_CHECK(VecGetArrayWrite(x_, &local));
-        for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = solution(i, c);
+        for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = solution(old_of(i), c);
         THRONG_PETSC_CHECK(VecRestoreArrayWrite(x_, &local));
       } else {
         THRONG_PETSC_CHECK(VecSet(x_, 0.0));
@@ -204,7 +301,7 @@ class PetscSpdSolver final : public SpdSolver {
       THRONG_PETSC_CHECK(VecScatterEnd(to_all_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD));
       const PetscScalar* all = nullptr;
       THRONG_PETSC_CHECK(VecGetArrayRead(x_all_, &all));
-      for (PetscInt i = 0; i < n_; ++i) solution(i, c) = all[i];
+      for (PetscInt i = 0; i < n_; ++i) solution(i, c) = all[new_of(i)];
       THRONG_PETSC_CHECK(VecRestoreArrayRead(x_all_, &all));
     }
   }
@@ -217,7 +314,7 @@ class PetscSpdSolver final : public SpdSolver {
       THRONG_PETSC_CHECK(VecDuplicate(x_, &v));
       PetscScalar* local = nullptr;
       THRONG_PETSC_CHECK(VecGetArrayWrite(v, &local));
-      for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = near_null_(i, k);
+      for (PetscInt i = begin_; i < end_; ++i) local[i - begin_] = near_null_(old_of(i), k);
       THRONG_PETSC_CHECK(VecRestoreArrayWrite(v, &local));
     }
     MatNullSpace space = nullptr;
@@ -241,6 +338,9 @@ class PetscSpdSolver final : public SpdSolver {
   SolverOptions options_;
   Eigen::MatrixXd near_null_;
   int block_size_ = 1;
+  int rank_ = 0;
+  int ranks_ = 1;
+  petsc::Layout layout_;
   PetscInt n_ = 0;
   PetscInt begin_ = 0;
   PetscInt end_ = 0;
