@@ -6,30 +6,43 @@
 //   1. Graph of each keyframe (§3.1): Delaunay edges (3-D Delaunay for 3-D formations), weight 1/distance, then
 //      the user's edits. Laplacian L_k (n×n, positive SEMI-definite); the graph must be connected.
 //   2. Eigenbasis E_k of L_k, eigenvalues ascending, e1 = 1/√n set exactly. Coordinates x = Σ α_j e_j (Eq. 1).
-//   3. Each basis is aligned to the previous one (§3.2, §4.2): target vectors reordered (greedy, or the max–min
+//   3. Each basis is aligned to the previous one (§3.2, §4.2), the previous one taken in its own eigenvalue
+//      order (so a pairing depends only on the two keyframes): target vectors reordered (greedy, or the max–min
 //      refinement), signs flipped so <e^S_j, e^T_j> ≥ 0, det(M_{k−1}ᵀ M_k) made +1 by flipping the least aligned
 //      vector. Beyond the paper: within a repeated eigenvalue (regular formations: circles, grids) the target
 //      basis is rotated to match the source (orthogonal Procrustes), the many-dimensional form of the sign rule;
 //      without it LAPACK's arbitrary basis of that eigenspace would spin the individuals needlessly.
-//   4. Rotations between aligned bases, G_ab = M_aᵀ M_b, decomposed exactly as G = Z U Zᵀ, U block diagonal with
-//      2×2 rotations (the real Schur form of an orthogonal matrix; −1 pairs become rotations by π). Powers
-//      G^c = Z U(c) Zᵀ, each block rotated by c·θ. (The paper approximated powers with Denman–Beavers square roots.)
-//   5. Several keyframes (§4.1, Eq. 5): with spline weights c−1..c2 (Catmull-Rom, tension τ, endpoints
-//      duplicated) and a = n−1, M(t) = M_a · G_{a,n+2}^{c2} · G_{a,n+1}^{c1} · G_{a,n}^{c0}: the paper's
-//      (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1} written in M_a's basis. Two keyframes give the §3.2 path
-//      M(t) = R^{s(t)} S with s = c1 + c2 (s(t) = t when τ = 1; the default τ = 0.5 eases in and out a little).
+//   4. Rotations between CONSECUTIVE aligned bases, G_{k,k+1} = M_kᵀ M_{k+1}, decomposed exactly as G = Z U Zᵀ,
+//      U block diagonal with 2×2 rotations (the real Schur form of an orthogonal matrix; −1 pairs become
+//      rotations by π). Powers G^c = Z U(c) Zᵀ, each block rotated by c·θ. (The paper approximated powers with
+//      Denman–Beavers square roots.)
+//   5. Several keyframes (§4.1, Eq. 5), in cumulative form: with spline weights c−1..c2 (Catmull-Rom, tension τ,
+//      endpoints duplicated), in interval n → n+1,
+//        M(t) = M_{n+1} · G_{n+1,n+2}^{c2} · G_{n,n+1}^{−(c−1+c0)} · G_{n−1,n}^{−c−1},
+//      i.e. R2^{c2} R1^{c1+c2} R0^{c0+c1+c2} M_{n−1} with R0, R1, R2 the rotations n−1→n, n→n+1, n+1→n+2: the
+//      rotational analogue of p_{n−1} + (c0+c1+c2)(p_n − p_{n−1}) + (c1+c2)(p_{n+1} − p_n) + c2(p_{n+2} − p_{n+1}).
+//      This departs from METHODS.md §2 (the paper's (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1}) on purpose. It
+//      equals the paper's when the rotations commute (always for two keyframes), but every power is of a rotation
+//      between consecutive keyframes: the paper's powers of the products R1R0 and R2R1R0 take their principal
+//      logarithm, which swings the basis the other way round once the rotations add up past π in a plane, and
+//      for rotations that do not commute leave the path between M_n and M_{n+1} even at τ = 0; here τ = 0 gives
+//      exactly the two-keyframe path of each interval. Two keyframes give the §3.2 path M(t) = R^{s(t)} S with
+//      s = c1 + c2 (s(t) = t when τ = 1; the default τ = 0.5 eases in and out a little).
 //   6. Coefficients (§3.3, Eq. 4): each (α_j, β_j) interpolated in polar form, length and angle with the same
 //      spline weights, angles unwrapped the shorter way round between consecutive keyframes; in 3-D (§4.5) the
-//      direction follows the same product of rotation powers (slerp for two keyframes) and the length the spline.
+//      direction follows the same cumulative product of powers of the shortest rotations between consecutive
+//      keyframes' directions (slerp for two keyframes) and the length the spline.
 //      The barycentre (j = 1) follows the spline linearly.
 //   7. Orientation (§3.3, PCA adjustment): each keyframe is rotated about its barycentre so its principal axes
 //      match the previous keyframe's (the sign ambiguity of the axes is settled by the correspondence: the
 //      candidate closest to the previous keyframe wins; nearly isotropic keyframes, whose axes are undefined, use
 //      the least-squares rotation instead). The shapes are interpolated in this common frame and the keyframes'
 //      own rotation is restored by a rotation interpolated with the same spline (2-D: the unwrapped angle; 3-D:
-//      the product of rotation powers), so keyframes are still hit exactly.
+//      the same cumulative product of powers of the rotations between consecutive keyframes), so keyframes are
+//      still hit exactly.
 //   8. Positions x(t) = anchor(t) + M(t) C(t) O(t)ᵀ, all frames of a keyframe interval in one matrix product
-//      chain: w = Z1ᵀ C, rotate blocks (O(n) per frame), w = (Z2ᵀ Z1) w, ..., x = (M_a Z_last) w.
+//      chain over the (at most three) factors of step 5: w = Z1ᵀ C, rotate blocks (O(n) per frame),
+//      w = (Z2ᵀ Z1) w, ..., x = (M_{n+1} Z_last) w.
 //   9. Hierarchy (§4.4): a tree of groups; each group runs steps 1–8 on its items (its direct members and the
 //      barycentres of its subgroups) relative to its own barycentre, whose path comes from the parent group.
 //      Without a tree, one can be built by spectral clustering (recursive Fiedler bisection of the graph summed
@@ -61,7 +74,8 @@ namespace throng::formation {
 /// How target eigenvectors are paired with source eigenvectors (§4.2).
 enum class Reordering {
   none,    ///< by eigenvalue order
-  greedy,  ///< source j = 2..n in turn takes the free target vector with the largest |inner product| (the paper's)
+  greedy,  ///< source j = 2..n, in the source keyframe's own eigenvalue order, in turn takes the free target vector
+           ///< with the largest |inner product| (the paper's)
   max_min  ///< maximise the smallest |inner product| over all pairs (exact bottleneck assignment), then the sum
 };
 
