@@ -41,6 +41,19 @@ std::set<std::string> files_in(const std::filesystem::path& dir) {
   return names;
 }
 
+// The largest speed (m/s) of the agents `keep` selects, over every pair of frames where the agent is present.
+template <typename Keep>
+double max_speed(const CrowdMotion& c, Keep keep) {
+  double speed = 0;
+  for (std::size_t f = 0; f + 1 < c.frame_count(); ++f) {
+    for (std::size_t a = 0; a < c.agent_count(); ++a) {
+      if (!keep(a) || !c.present(f, a) || !c.present(f + 1, a)) continue;
+      speed = std::max(speed, (c.position(f + 1, a) - c.position(f, a)).head<2>().norm() / (c.times[f + 1] - c.times[f]));
+    }
+  }
+  return speed;
+}
+
 double max_gap(const CrowdMotion& a, const CrowdMotion& b) {
   REQUIRE(a.positions.size() == b.positions.size());
   double gap = 0;
@@ -282,6 +295,9 @@ TEST_CASE("the town job runs end to end: 300+ characters from 10+ cut clips, dup
   };
   replace_all("configs/", (test::source_dir() / "configs").string() + "/");
   replace_all("../shared/data/real/", data.string() + "/");
+  // The two march sources are written too, for their speeds.
+  replace_all("name: paper,", "name: paper, output: paper.h5,");
+  replace_all("name: battlefield,", "name: battlefield, output: battlefield.h5,");
   std::size_t cuts = 0, stitches = 0, transforms = 0, edits = 0;
   for (std::size_t at = job.find("step: "); at != std::string::npos; at = job.find("step: ", at + 1)) {
     const std::string word = job.substr(at + 6, job.find_first_of(",}\n", at) - at - 6);
@@ -298,7 +314,7 @@ TEST_CASE("the town job runs end to end: 300+ characters from 10+ cut clips, dup
 
   std::string out;
   REQUIRE(test::run_command("cd " + dir.string() + " && " + test::throng_program().string() + " --quiet --json run town.yaml", &out) == 0);
-  CHECK(nlohmann::json::parse(out)["crowd_files_written"] == 1);
+  CHECK(nlohmann::json::parse(out)["crowd_files_written"] == 3);
   const CrowdFile town = read_crowd_file(dir / "town.h5");
   CHECK(town.motion.agent_count() >= 300);
   CHECK(town.motion.frame_count() == 481);  // 20 s at 24 fps: every group on one timeline
@@ -310,4 +326,14 @@ TEST_CASE("the town job runs end to end: 300+ characters from 10+ cut clips, dup
   REQUIRE_FALSE(town.provenance.credits.empty());
   CHECK_THAT(town.provenance.credits.front(), Contains("Pellegrini"));
   CHECK(std::filesystem::file_size(dir / "town.svg") > 10000);
+  // The stitched, placed, dragged and warped march groups (ids below 100000) move no faster than 3× the fastest
+  // walker of their sources: each joint spreads its gap (up to ~20 m here) over the blended clips, which adds
+  // speed, but nothing may jump (a jump at a joint showed as 50-1,000 m/s).
+  const auto all = [](std::size_t) { return true; };
+  const double source = std::max(max_speed(read_crowd_file(dir / "paper.h5").motion, all),
+                                 max_speed(read_crowd_file(dir / "battlefield.h5").motion, all));
+  const double marching = max_speed(town.motion, [&](std::size_t a) { return town.motion.ids[a] < 100000; });
+  INFO("source max speed " << source << " m/s, town march groups " << marching << " m/s");
+  CHECK(source > 1.0);
+  CHECK(marching <= 3 * source);
 }

@@ -1,6 +1,5 @@
 #include "text.h"
 
-#include <throng/core/assignment.h>
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
 #include <throng/linalg/spd_solver.h>
@@ -84,47 +83,6 @@ double blend_weight(double distance, double window) noexcept {
   return 1.0 - 3.0 * x * x + 2.0 * x * x * x;
 }
 
-Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first, const Eigen::Ref<const Points>& first_of_second,
-                              Matching matching) {
-  const Index n = last_of_first.rows();
-  if (first_of_second.rows() != n) {
-    throw InputError("matching: " + std::to_string(n) + " agents against " + std::to_string(first_of_second.rows()));
-  }
-  Eigen::RowVector2d shift_a(0, 0), shift_b(0, 0);
-  if (matching == Matching::centred && n > 0) {
-    shift_a = last_of_first.colwise().mean();
-    shift_b = first_of_second.colwise().mean();
-  }
-  Eigen::MatrixXd cost(n, n);
-  for (Index i = 0; i < n; ++i) {
-    const Eigen::RowVector2d a = last_of_first.row(i) - shift_a;
-    for (Index k = 0; k < n; ++k) cost(i, k) = (a - (first_of_second.row(k) - shift_b)).norm();
-  }
-  const Assignment assignment = solve_assignment(cost, "stitch matching cost");
-  Correspondence c;
-  c.total_distance = assignment.cost;
-  c.second_of_first.resize(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) c.second_of_first[static_cast<std::size_t>(i)] = static_cast<std::size_t>(assignment.column_of_row[static_cast<std::size_t>(i)]);
-  return c;
-}
-
-Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<const Points>& to, Alignment alignment) {
-  Eigen::Isometry2d m = Eigen::Isometry2d::Identity();
-  if (alignment == Alignment::none || from.rows() == 0) return m;
-  const Eigen::Vector2d from_centre = from.colwise().mean().transpose();
-  const Eigen::Vector2d to_centre = to.colwise().mean().transpose();
-  if (alignment == Alignment::translation) {
-    m.translation() = to_centre - from_centre;
-    return m;
-  }
-  // Eigen::umeyama without scaling: the least-squares rotation + translation (reflections excluded).
-  const Eigen::Matrix3d h = Eigen::umeyama(Eigen::MatrixXd(from.transpose()), Eigen::MatrixXd(to.transpose()), false);
-  m.linear() = h.topLeftCorner<2, 2>();
-  m.translation() = h.topRightCorner<2, 1>();
-  // Points all at one place determine no rotation: umeyama then returns the identity rotation, kept as is.
-  return m;
-}
-
 Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const Options& options, Progress* progress) {
   validate(options);
   NoProgress quiet;
@@ -164,17 +122,24 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
     last_a.row(static_cast<Index>(j)) = first.position(J, pa.agents[j]).head<2>().transpose();
     first_b.row(static_cast<Index>(j)) = second.position(0, pb.agents[j]).head<2>().transpose();
   }
-  const Correspondence match = match_boundary(last_a, first_b, options.matching);
+  Headings headings;
+  for (std::size_t j = 0; j < n; ++j) {
+    headings.first += (first.position(J, pa.agents[j]) - first.position(J - 1, pa.agents[j])).head<2>() / static_cast<double>(n);
+    headings.second += (second.position(1, pb.agents[j]) - second.position(0, pb.agents[j])).head<2>() / static_cast<double>(n);
+  }
+  const BoundaryFit fit = fit_boundary(last_a, first_b, headings, options.matching, options.alignment);
+  const Correspondence& match = fit.correspondence;
+  report.fit_starts = fit.starts;
+  report.fit_rounds = fit.rounds;
+  report.fit_start_rotation = fit.start_rotation;
   std::vector<std::size_t> partner(n);  // the agent of `second` (index into it) matched to result agent j
-  Points matched_b(static_cast<Index>(n), 2);
   for (std::size_t j = 0; j < n; ++j) {
     partner[j] = pb.agents[match.second_of_first[j]];
-    matched_b.row(static_cast<Index>(j)) = first_b.row(static_cast<Index>(match.second_of_first[j]));
     result.second_ids.push_back(second.ids[partner[j]]);
     if (second.ids[partner[j]] == first.ids[pa.agents[j]]) ++report.matched_same_id;
   }
   report.matching_distance = match.total_distance;
-  result.alignment = align(matched_b, last_a, options.alignment);
+  result.alignment = fit.alignment;
   const Eigen::Isometry2d& M = result.alignment;
   report.rotation = std::atan2(M.linear()(1, 0), M.linear()(0, 0));
   report.translation = M.translation();

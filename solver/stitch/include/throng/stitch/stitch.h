@@ -6,7 +6,9 @@
 //  1. Correspondence: the minimum-total-distance matching between G's last frame and G′'s first frame (exact:
 //     throng/core/assignment.h, Hungarian / Jonker–Volgenant).
 //  2. Alignment: the rotation and translation (no scale) taking G′'s first frame onto G's last frame in least
-//     squares (Eigen::umeyama without scaling), applied to all of G′.
+//     squares (Eigen::umeyama without scaling), applied to all of G′. Steps 1 and 2 are iterated (re-matching in
+//     the aligned frame) from a few start rotations, so a G′ turned by any angle is put back
+//     (throng/stitch/boundary.h).
 //  3. Blending: the stitched graph has the frames of G then G′ from its second frame on; the joint J is G's last
 //     frame. Temporal features are copied from G before J and from G′ after J; at J they are the average of G's
 //     feature at J − 1 and G′'s at J + 1 (the paper's linear interpolation at the midpoint). Spatial and
@@ -29,9 +31,10 @@
 //    sample of the outside on each side suffices, since features join adjacent samples only). The outer frame of
 //    each clip is always pinned. So stitching leaves the clips' far ends where they were, and a short window costs
 //    a small solve.
-//  * Matching frame. matching = world (default, the paper's): distances between the positions as they are — the
-//    user placed G′ where G should continue. matching = centred: both frames are moved to their centroids first
-//    (translation does not matter; for clips placed anywhere).
+//  * Matching frame. matching = world (default, the paper's): the first matching uses the positions as they are —
+//    the user placed G′ where G should continue. matching = centred: both frames are moved to their centroids
+//    first (for clips placed anywhere). Either is only the first start of the boundary fit: the final matching is
+//    the one in the aligned frame (boundary.h).
 //  * Alignment = rigid (default), translation (no rotation) or none. With one agent, or all of them at one place,
 //    no rotation is determined and none is applied.
 //  * Agents: only those present at every frame of their clip take part (others are left out and listed); both
@@ -57,6 +60,7 @@
 #include <throng/graph/features.h>
 #include <throng/graph/motion_graph.h>
 #include <throng/linalg/solver_options.h>
+#include <throng/stitch/boundary.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -66,9 +70,6 @@
 #include <vector>
 
 namespace throng::stitch {
-
-enum class Matching { world, centred };
-enum class Alignment { rigid, translation, none };
 
 struct Options {
   std::size_t sample_step = 1;   ///< frames between graph samples (≥ 1)
@@ -84,23 +85,6 @@ struct Options {
 /// Checks option values; ConfigError naming the option.
 void validate(const Options& options);
 
-/// Points in the plane, one per row (metres).
-using Points = Eigen::Matrix<double, Eigen::Dynamic, 2>;
-
-/// Step 1: the matching between `last_of_first` (G's last frame) and `first_of_second` (G′'s first frame), same
-/// count n, minimising the summed distance (centred first when matching = centred).
-///   second_of_first  n: the row of first_of_second matched to each row of last_of_first
-struct Correspondence {
-  std::vector<std::size_t> second_of_first;
-  double total_distance = 0;  ///< metres, in the frame the matching used
-};
-[[nodiscard]] Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first,
-                                            const Eigen::Ref<const Points>& first_of_second, Matching matching);
-
-/// Step 2: the rotation and translation (no scale) taking `from` onto `to` (rows correspond) in least squares, or
-/// only the translation (mean difference), or the identity.
-[[nodiscard]] Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<const Points>& to, Alignment alignment);
-
 /// Eq. 11's blending function: 1 − 3 (d/W)² + 2 (d/W)³ for 0 ≤ d < W, 0 for d ≥ W.
 [[nodiscard]] double blend_weight(double distance, double window) noexcept;
 
@@ -108,7 +92,9 @@ struct Report {
   std::size_t agents = 0;
   std::size_t frames_first = 0, frames_second = 0, frames = 0;  ///< t, t′, t + t′ − 1
   std::vector<std::int64_t> left_out_first, left_out_second;     ///< ids absent somewhere in their clip
-  double matching_distance = 0;        ///< metres, summed over agents (in the matching's frame)
+  double matching_distance = 0;        ///< metres, summed over agents, in the aligned frame (none: the matching's)
+  std::size_t fit_starts = 0, fit_rounds = 0;  ///< boundary fit: start rotations tried, assignments solved
+  double fit_start_rotation = 0;       ///< radians: the start the chosen fit came from
   std::size_t matched_same_id = 0;     ///< agents matched to the agent of G′ with the same id
   double rotation = 0;                 ///< radians, applied to G′
   Eigen::Vector2d translation{0, 0};   ///< metres, applied to G′ after the rotation
