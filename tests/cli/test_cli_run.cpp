@@ -59,7 +59,7 @@ TEST_CASE("a step's output crowd file records the pipeline and the data's credit
   CHECK_THAT(f.provenance.credits.front(), Contains("Pellegrini"));
 }
 
-TEST_CASE("unknown steps, unknown keys and missing inputs are config errors with exit 2") {
+TEST_CASE("unknown steps and unknown keys are config errors with exit 2 and their line, a missing input exit 4") {
   const auto dir = test::scratch_dir("cli_run_errors");
   std::string out;
   std::ofstream(dir / "a.yaml") << "steps:\n  - step: frobnicate\n";
@@ -67,12 +67,19 @@ TEST_CASE("unknown steps, unknown keys and missing inputs are config errors with
   CHECK_THAT(out, Contains("a.yaml:2:11") && Contains("unknown step 'frobnicate'"));
   std::ofstream(dir / "b.yaml") << "steps:\n  - step: import\n    dataset: x\n    radius: 0.3\n    radios: 1\n";
   CHECK(run("run " + (dir / "b.yaml").string(), &out) == 2);
-  CHECK_THAT(out, Contains("unknown key 'radios'"));
+  CHECK_THAT(out, Contains("step 1/1 import") && Contains("b.yaml:5:5: unknown key 'radios'"));
   std::ofstream(dir / "c.yaml") << "steps:\n  - step: plot\n    output: " << (dir / "p.svg").string() << "\n";
   CHECK(run("run " + (dir / "c.yaml").string(), &out) == 2);
   CHECK_THAT(out, Contains("plot needs a crowd"));
+  // A missing input file is an I/O error, as `throng edit nowhere.h5` is, labelled with its step and place.
   std::ofstream(dir / "d.yaml") << "steps:\n  - step: info\n    input: nowhere.h5\n";
-  CHECK(run("run " + (dir / "d.yaml").string(), &out) == 2);
+  CHECK(run("run " + (dir / "d.yaml").string(), &out) == 4);
+  CHECK_THAT(out, Contains("step 1/1 info") && Contains("d.yaml:3:12") && Contains("nowhere.h5"));
+  // A step job file's unknown key: named with its line too.
+  std::ofstream(dir / "step.yaml") << "dataset: x\nradius: 0.3\nblend_windw: 4\n";
+  std::ofstream(dir / "f.yaml") << "steps:\n  - step: import\n    job: " << (dir / "step.yaml").string() << "\n";
+  CHECK(run("run " + (dir / "f.yaml").string(), &out) == 2);
+  CHECK_THAT(out, Contains(":3:1: unknown key 'blend_windw'"));
   std::ofstream(dir / "e.yaml") << "steps: []\n";
   CHECK(run("run " + (dir / "e.yaml").string(), &out) == 2);
   CHECK_FALSE(std::filesystem::exists(dir / "p.svg"));
