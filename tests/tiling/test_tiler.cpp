@@ -165,6 +165,32 @@ TEST_CASE("a library whose ends can never match is reported at once, not searche
     CHECK(m.find("'box_pickup'") != std::string::npos);
   }
   CHECK(std::chrono::steady_clock::now() - started < std::chrono::seconds(5));
+  // A keyframe of a type that can never be used, with an end inside the region: a configuration error at once,
+  // naming the keyframe and the end (not a long search that ends "caps reached").
+  const PatchLibrary boxes = builtin_library({"walk", "turn_left", "turn_right", "stop", "start", "box_pickup"});
+  Keyframe k;
+  k.type = boxes.find("box_pickup");
+  k.transform.translation = {4, 4};
+  k.transform.time_shift = 4;
+  const auto asked = std::chrono::steady_clock::now();
+  try {
+    (void)tile(boxes, box(8, 8, 8), {k}, quick_options(1), quiet);
+    FAIL("expected a ConfigError");
+  } catch (const ConfigError& e) {
+    const std::string m = e.what();
+    CHECK(m.find("keyframe 0") != std::string::npos);
+    CHECK(m.find("exit of fragment 0") != std::string::npos);
+    CHECK(m.find("'carrying'") != std::string::npos);
+  }
+  CHECK(std::chrono::steady_clock::now() - asked < std::chrono::seconds(1));
+  // The same keyframe with its exit outside the region needs no partner there: accepted.
+  k.transform.time_shift = 7.5;  // the patch lasts 2 s: its exit at 8.5 s, after the region's end
+  const TilingResult kept = tile(boxes, box(8, 8, 8), {k}, quick_options(1), quiet);
+  CHECK(kept.tiling.instances.at(0).keyframed);
+  // Resources beyond the limits: a configuration error before anything is allocated.
+  Options tiny_cells = quick_options(1);
+  tiny_cells.index.cell_m = 1e-6;
+  CHECK_THROWS_AS(tile(builtin_library({"walk"}), box(6, 6, 6), {}, tiny_cells, quiet), ConfigError);
   // A usable subset is tiled, the rest left out and reported.
   const PatchLibrary mixed = builtin_library({"walk", "stop"});
   const TilingResult r = tile(mixed, box(6, 6, 6), {}, quick_options(1), quiet);

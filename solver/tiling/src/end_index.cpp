@@ -5,8 +5,7 @@
 namespace throng::tiling {
 
 EndIndex::EndIndex(const Region& region, const MatchThresholds& match)
-    : grid_(region, std::max(match.distance_m, 0.25), std::max(match.time_s, 0.25), 2 * match.distance_m + 10.0,
-            2 * match.time_s + 10.0),
+    : grid_(region, cell_m(match), cell_s(match), margin_m(match), margin_s(match)),
       match_(match) {
   const Eigen::Vector3d p = periods(region);
   periods_.p = {p.x(), p.y(), p.z()};

@@ -8,6 +8,7 @@
 #include "geometry.h"
 #include "grid.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -32,6 +33,13 @@ struct EndMatch {
 class EndIndex {
  public:
   EndIndex(const Region& region, const MatchThresholds& match);
+
+  /// The grid an index for these thresholds uses: cells of the match distance and time (at least 0.25 m,
+  /// 0.25 s), reaching 10 m and 10 s plus twice the thresholds beyond the region.
+  [[nodiscard]] static double cell_m(const MatchThresholds& m) { return std::max(m.distance_m, 0.25); }
+  [[nodiscard]] static double cell_s(const MatchThresholds& m) { return std::max(m.time_s, 0.25); }
+  [[nodiscard]] static double margin_m(const MatchThresholds& m) { return 2 * m.distance_m + 10.0; }
+  [[nodiscard]] static double margin_s(const MatchThresholds& m) { return 2 * m.time_s + 10.0; }
 
   /// Adds or removes a dangling end (is_exit says which side of the fragment).
   void insert(FragmentRef ref, bool is_exit, const EndPoint& end);

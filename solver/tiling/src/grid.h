@@ -19,16 +19,21 @@ struct GridAxis {
   bool periodic = false;
 
   GridAxis() = default;
+  /// Callers check cells() first: counts beyond an int are not representable.
   GridAxis(double lo, double hi, double margin, double cell_size, bool is_periodic) : periodic(is_periodic) {
+    count = static_cast<int>(cells(lo, hi, margin, cell_size, periodic));
     if (periodic) {
-      count = std::max(1, static_cast<int>(std::lround((hi - lo) / cell_size)));
       cell = (hi - lo) / count;
       origin = lo;
     } else {
       cell = cell_size;
       origin = lo - margin;
-      count = std::max(1, static_cast<int>(std::ceil((hi - lo + 2 * margin) / cell_size)));
     }
+  }
+
+  /// The number of cells such an axis has, in floating point (no overflow however small the cell).
+  [[nodiscard]] static double cells(double lo, double hi, double margin, double cell_size, bool is_periodic) {
+    return std::max(1.0, is_periodic ? std::round((hi - lo) / cell_size) : std::ceil((hi - lo + 2 * margin) / cell_size));
   }
 
   /// Raw (unwrapped, unclamped) cell of a value.
@@ -63,6 +68,13 @@ struct Grid3 {
       : x(region.min.x(), region.max.x(), margin_m, cell_m, region.periodic[0]),
         y(region.min.y(), region.max.y(), margin_m, cell_m, region.periodic[1]),
         t(region.t0, region.t1, margin_s, cell_s, region.periodic[2]) {}
+
+  /// The cells such a grid has, in floating point: what to check before building one.
+  [[nodiscard]] static double cells(const Region& region, double cell_m, double cell_s, double margin_m, double margin_s) {
+    return GridAxis::cells(region.min.x(), region.max.x(), margin_m, cell_m, region.periodic[0]) *
+           GridAxis::cells(region.min.y(), region.max.y(), margin_m, cell_m, region.periodic[1]) *
+           GridAxis::cells(region.t0, region.t1, margin_s, cell_s, region.periodic[2]);
+  }
 
   [[nodiscard]] std::size_t cells() const noexcept {
     return static_cast<std::size_t>(x.count) * static_cast<std::size_t>(y.count) * static_cast<std::size_t>(t.count);

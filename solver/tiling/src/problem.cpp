@@ -27,16 +27,36 @@ Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options&
   for (std::size_t k = 0; k < usable.size(); ++k) {
     if (usable[k]) usable_types.push_back(k);
   }
-  for (const PatchType& type : library.types) {
-    for (const Fragment& f : type.fragments) {
-      for (const Eigen::Vector2d& q : f.positions) max_extent_m = std::max(max_extent_m, q.norm() + f.radius_m);
-    }
-    max_half_duration_s = std::max(max_half_duration_s, 0.5 * (type.end_time() - type.start_time()));
-  }
+  max_extent_m = max_extent_of(library);
+  max_half_duration_s = max_half_duration_of(library);
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
   for (const Obstacle& o : environment.scene.obstacles) {
     obstacle_bounds.push_back(bounds_over(o, region.t0 - margin_s, region.t1 + margin_s));
   }
+}
+
+double max_extent_of(const PatchLibrary& library) {
+  double extent = 0;
+  for (const PatchType& type : library.types) {
+    for (const Fragment& f : type.fragments) {
+      for (const Eigen::Vector2d& q : f.positions) extent = std::max(extent, q.norm() + f.radius_m);
+    }
+  }
+  return extent;
+}
+
+double max_half_duration_of(const PatchLibrary& library) {
+  double half = 0;
+  for (const PatchType& type : library.types) half = std::max(half, 0.5 * (type.end_time() - type.start_time()));
+  return half;
+}
+
+double index_margin_m(const Options& options, double max_extent_m) {
+  return 2 * max_extent_m + options.search.jitter_distance_end_m + options.match.distance_m;
+}
+
+double index_margin_s(const Options& options, double max_half_duration_s) {
+  return 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
 }
 
 EndPoint Problem::end_point(std::size_t type, const std::vector<Path>& paths, std::size_t f, bool is_exit) const {

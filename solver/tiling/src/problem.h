@@ -16,6 +16,14 @@
 
 namespace throng::tiling {
 
+/// The largest distance of a sample (plus its radius) from its patch's centroid, over the library.
+[[nodiscard]] double max_extent_of(const PatchLibrary& library);
+/// The largest half time span of a patch of the library.
+[[nodiscard]] double max_half_duration_of(const PatchLibrary& library);
+/// How far beyond the region the segment index reaches (a placed patch's paths, jittered, matched).
+[[nodiscard]] double index_margin_m(const Options& options, double max_extent_m);
+[[nodiscard]] double index_margin_s(const Options& options, double max_half_duration_s);
+
 struct Problem {
   Problem(const PatchLibrary& library, const Environment& environment, const Options& options);
 

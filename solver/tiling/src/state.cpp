@@ -4,20 +4,11 @@
 #include <cassert>
 
 namespace throng::tiling {
-namespace {
-
-double index_margin_m(const Problem& p) {
-  return 2 * p.max_extent_m + p.options.search.jitter_distance_end_m + p.options.match.distance_m;
-}
-double index_margin_s(const Problem& p) {
-  return 2 * p.max_half_duration_s + p.options.search.jitter_time_end_s + p.options.match.time_s;
-}
-
-}  // namespace
 
 TilingState::TilingState(const Problem& problem)
     : problem_(problem),
-      segments_(problem.region, problem.options.index, index_margin_m(problem), index_margin_s(problem)),
+      segments_(problem.region, problem.options.index, index_margin_m(problem.options, problem.max_extent_m),
+                index_margin_s(problem.options, problem.max_half_duration_s)),
       ends_(problem.region, problem.options.match) {}
 
 std::uint32_t TilingState::next_id() const noexcept {

@@ -15,11 +15,13 @@
 #include "serialize.h"
 #include "viability.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <thread>
 #include <tuple>
@@ -58,6 +60,83 @@ void check_inputs(const PatchLibrary& library, const Environment& environment, c
     }
     if (!k.transform.translation.allFinite() || !std::isfinite(k.transform.angle) || !std::isfinite(k.transform.time_shift)) {
       throw ConfigError("tile: keyframe " + std::to_string(i) + " has a non-finite placement");
+    }
+    const Eigen::Vector2d& p = k.transform.translation;
+    const bool inside = (r.periodic[0] || (p.x() >= r.min.x() && p.x() <= r.max.x())) &&
+                        (r.periodic[1] || (p.y() >= r.min.y() && p.y() <= r.max.y())) &&
+                        (r.periodic[2] || (k.transform.time_shift >= r.t0 && k.transform.time_shift <= r.t1));
+    if (!inside) {
+      std::ostringstream m;
+      m << "tile: keyframe " << i << " ('" << library.types[k.type].name << "' at (" << p.x() << ", " << p.y() << ") m, "
+        << k.transform.time_shift << " s) lies outside the region [" << r.min.x() << ", " << r.max.x() << "] × ["
+        << r.min.y() << ", " << r.max.y() << "] m × [" << r.t0 << ", " << r.t1
+        << "] s: a keyframe's centroid and middle time must lie inside";
+      throw ConfigError(m.str());
+    }
+  }
+}
+
+// What the run would allocate, before it does (tile.h: max_deformation_bytes, max_index_cells).
+void check_resources(const PatchLibrary& library, const Region& region, const Options& options) {
+  double bytes = 0;
+  std::size_t largest = 0;
+  for (std::size_t k = 0; k < library.types.size(); ++k) {
+    bytes += deformation_bytes(library.types[k]);
+    if (library.types[k].sample_count() > library.types[largest].sample_count()) largest = k;
+  }
+  if (bytes > max_deformation_bytes) {
+    std::ostringstream m;
+    m << "tile: the patch deformation systems would take " << bytes / 1e9 << " GB (the largest, '"
+      << library.types[largest].name << "', has " << library.types[largest].sample_count()
+      << " samples), more than the " << max_deformation_bytes / 1e9
+      << " GB allowed: sample the patches more coarsely or use shorter ones";
+    throw ConfigError(m.str());
+  }
+  const double cells = index_cells(library, region, options);
+  if (cells > max_index_cells) {
+    std::ostringstream m;
+    m << "tile: the space-time index would have " << cells << " cells over the region and its margins, more than "
+      << max_index_cells << ": raise index.cell (" << options.index.cell_m << " m) or index.cell_time ("
+      << options.index.cell_s << " s), or tile a smaller region";
+    throw ConfigError(m.str());
+  }
+}
+
+// A keyframe is kept as placed and never removed: an end of it inside the region (one that needs a partner)
+// whose pose class no usable type continues could never be connected, so the run could never be perfect.
+void check_keyframe_ends(const PatchLibrary& library, const Environment& environment, const Viability& viability,
+                         const std::vector<Keyframe>& keyframes) {
+  std::set<std::size_t> entries, exits;  // pose classes of the usable types' entries and exits
+  for (std::size_t k = 0; k < library.types.size(); ++k) {
+    if (!viability.usable[k]) continue;
+    for (const Fragment& f : library.types[k].fragments) {
+      if (!f.is_character()) continue;
+      entries.insert(f.entry_class);
+      exits.insert(f.exit_class);
+    }
+  }
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    const PatchType& type = library.types[keyframes[i].type];
+    const std::vector<Path> paths = place(type, keyframes[i].transform);
+    for (std::size_t f = 0; f < type.fragments.size(); ++f) {
+      const Fragment& fr = type.fragments[f];
+      if (!fr.is_character()) continue;
+      for (const bool exit : {false, true}) {
+        const Path& p = paths[f];
+        const std::size_t s = exit ? p.times.size() - 1 : 0;
+        if (end_needs_no_partner(environment, p.positions[s], p.times[s], exit)) continue;
+        const std::size_t c = exit ? fr.exit_class : fr.entry_class;
+        if ((exit ? entries : exits).contains(c)) continue;
+        std::ostringstream m;
+        m << "tile: keyframe " << i << " ('" << type.name << "'): the " << (exit ? "exit" : "entry") << " of fragment " << f
+          << " at (" << p.positions[s].x() << ", " << p.positions[s].y() << ") m, " << p.times[s] << " s has pose class '"
+          << library.pose_classes[c] << "', which no usable patch " << (exit ? "enters" : "leaves")
+          << " with: it could never be connected";
+        if (!viability.usable[keyframes[i].type]) m << " (the patch itself is never used: " << viability.why[keyframes[i].type] << ")";
+        m << ". Add patches " << (exit ? "entering" : "leaving") << " with that class, or place the keyframe so this end "
+          << "lies outside the region";
+        throw ConfigError(m.str());
+      }
     }
   }
 }
@@ -106,20 +185,36 @@ ChainReport from_doubles(const double* d) {
 
 }  // namespace
 
+double deformation_bytes(const PatchType& type) {
+  const auto n = static_cast<double>(type.sample_count());
+  return 8.0 * ((2 * n) * (2 * n) + n * n);
+}
+
+double index_cells(const PatchLibrary& library, const Region& region, const Options& options) {
+  const double segments = Grid3::cells(region, options.index.cell_m, options.index.cell_s,
+                                       index_margin_m(options, max_extent_of(library)),
+                                       index_margin_s(options, max_half_duration_of(library)));
+  const MatchThresholds& m = options.match;
+  const double ends = Grid3::cells(region, EndIndex::cell_m(m), EndIndex::cell_s(m), EndIndex::margin_m(m), EndIndex::margin_s(m));
+  return std::max(segments, ends);
+}
+
 TilingResult tile(const PatchLibrary& library, const Environment& environment, const std::vector<Keyframe>& keyframes,
                   const Options& options, Progress& progress) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(library, environment, keyframes, options);
-  progress.update(0.0, "precomputing patch systems");
-  const Problem problem(library, environment, options);
-  if (problem.usable_types.empty()) {
+  const Viability viability = find_usable_types(library);
+  if (std::none_of(viability.usable.begin(), viability.usable.end(), [](bool u) { return u; })) {
     std::ostringstream m;
     m << "tile: no patch type can ever be placed inside the region without leaving an end that nothing can continue:";
-    const Viability v = find_usable_types(library);
-    for (std::size_t k = 0; k < library.types.size(); ++k) m << (k ? ";" : "") << " '" << library.types[k].name << "': " << v.why[k];
+    for (std::size_t k = 0; k < library.types.size(); ++k) m << (k ? ";" : "") << " '" << library.types[k].name << "': " << viability.why[k];
     m << ". Add patches whose entries take the exits' pose classes (and the other way round)";
     throw NumericalError(m.str());
   }
+  check_keyframe_ends(library, environment, viability, keyframes);
+  check_resources(library, *environment.scene.region, options);
+  progress.update(0.0, "precomputing patch systems");
+  const Problem problem(library, environment, options);
   check_keyframes(problem, keyframes);
 
   const int rank = mpi::rank(), size = mpi::size();

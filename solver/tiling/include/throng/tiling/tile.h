@@ -40,6 +40,18 @@
 
 namespace throng::tiling {
 
+/// What tile() may allocate, checked before anything is (ConfigError beyond): the dense deformation systems of
+/// every patch type (deformation.h: a type of n samples holds a 2n × 2n and an n × n matrix of doubles, 40 n²
+/// bytes) and the cells of each chain's space-time grids (the segment index, options.h IndexOptions, and the
+/// index of dangling ends, cells of the match distance and time) over the region and its margins.
+inline constexpr double max_deformation_bytes = 2e9;
+inline constexpr double max_index_cells = 1e7;
+
+/// Bytes the deformation systems of `library` take (see max_deformation_bytes).
+[[nodiscard]] double deformation_bytes(const PatchType& type);
+/// Cells of the larger of a chain's two grids for this library, region and options (see max_index_cells).
+[[nodiscard]] double index_cells(const PatchLibrary& library, const Region& region, const Options& options);
+
 /// A user-placed instance (§6 "Keyframing"): part of the initial tiling, kept as placed.
 struct Keyframe {
   std::size_t type = 0;
@@ -82,9 +94,12 @@ struct TilingResult {
 };
 
 /// Tiles `environment.scene.region` with instances of `library` (see the file comment). Throws ConfigError
-/// (bad options, no region, a keyframe naming no type or colliding), InputError (an invalid library), and
-/// NumericalError when no patch type can ever be placed without leaving a dangling end. An imperfect result
-/// (caps reached) is returned, not thrown: report.perfect() says. Progress is reported from the calling thread.
+/// (bad options, no region, resources beyond the limits above, a keyframe naming no type, placed with its
+/// centroid or middle time outside the region, colliding, or with an end inside the region of a pose class no
+/// usable type continues), InputError (an invalid library), and NumericalError when no patch type can ever be
+/// placed without leaving a dangling end; all before any search. An imperfect result (caps reached, or a
+/// search that stopped because nothing fits the ends left) is returned, not thrown: report.perfect() says.
+/// Progress is reported from the calling thread.
 /// MPI: when launched by mpiexec, every rank must call tile() with the same arguments.
 [[nodiscard]] TilingResult tile(const PatchLibrary& library, const Environment& environment,
                                 const std::vector<Keyframe>& keyframes, const Options& options, Progress& progress);
