@@ -1,10 +1,13 @@
 // throng plot CROWD.h5 -o OUT.svg|png: trajectories, obstacles and agents at chosen frames, coloured by group,
-// with a scale bar; --overlay draws another crowd underneath (before/after an edit).
+// with a scale bar; --overlay draws another crowd underneath (before/after an edit). A file written by
+// `throng tile` is drawn as its tiling (io/tiling_plot.h: patches coloured by type, connections marked) unless
+// --no-tiling.
 #include "factories.h"
 
 #include <throng/io/atomic_output.h>
 #include <throng/io/config.h>
 #include <throng/io/plot.h>
+#include <throng/io/tiling_plot.h>
 
 namespace throng::cli {
 namespace {
@@ -17,6 +20,7 @@ void bind(OptionBinder& b, PlotOptions& o) {
   b.field("title", o.title);
   b.field("trajectories", o.trajectories);
   b.field("obstacles", o.obstacles);
+  b.field("min_agent_radius", o.min_agent_radius_px, Range::closed(0, 100));
 }
 
 /// The view of 3-D crowds: top (x, y; the default), front (x, z: looking north, +y) or side (y, z: looking
@@ -39,13 +43,15 @@ CrowdFile projected(const CrowdFile& file, const std::string& view) {
 }
 
 /// Draws `main` over `underneath` (each in grey, dashed): the before/after picture of an edit.
+/// `tiling`, when given, is the tiling `main` was made from: drawn instead of the plain trajectories.
 void plot(const std::filesystem::path& output, const std::vector<std::pair<const CrowdFile*, std::string>>& underneath,
-          const CrowdFile& main, const std::string& main_label, PlotOptions options) {
+          const CrowdFile& main, const std::string& main_label, PlotOptions options, const TilingData* tiling = nullptr) {
   std::vector<PlotLayer> layers;
   for (const auto& [file, label] : underneath) {
     layers.push_back({.file = file, .label = "before: " + label, .colour = "#9a9a9a", .opacity = 0.8, .dashed = true});
   }
   layers.push_back({.file = &main, .label = underneath.empty() ? main_label : "after: " + main_label});
+  if (tiling) add_tiling(layers.back(), *tiling);
   if (options.title.empty()) options.title = main_label;
   write_plot(output, layers, options);
 }
@@ -67,6 +73,9 @@ class PlotCommand final : public Command {
     app.add_flag("!--no-obstacles", options_.obstacles, "Leave obstacles out");
     app.add_option("--view", view_, "3-D crowds: top (x, y), front (x, z) or side (y, z)")
         ->capture_default_str()->check(CLI::IsMember({"top", "front", "side"}));
+    app.add_option("--min-agent-radius", options_.min_agent_radius_px, "Smallest agent disc radius in pixels")
+        ->capture_default_str()->check(CLI::Range(0.0, 100.0));
+    app.add_flag("!--no-tiling", tiling_, "A file written by throng tile: draw plain trajectories, not the patches");
   }
 
   void run(Context& context) override {
@@ -76,19 +85,23 @@ class PlotCommand final : public Command {
     OptionWriter writer(effective);
     bind(writer, options_);
     bind_view(writer, view_);
+    effective["tiling"] = tiling_;
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
 
     const CrowdFile file = projected(read_crowd_file(input_), view_);
+    std::optional<TilingData> tiling;
+    if (tiling_ && view_ == "top" && has_tiling_data(input_)) tiling = read_tiling_data(input_);
     CrowdFile before;
     std::vector<std::pair<const CrowdFile*, std::string>> underneath;
     if (!overlay_.empty()) {
       before = projected(read_crowd_file(overlay_), view_);
       underneath.emplace_back(&before, overlay_.filename().string());
     }
-    plot(output_, underneath, file, input_.filename().string(), options_);
+    plot(output_, underneath, file, input_.filename().string(), options_, tiling ? &*tiling : nullptr);
     Report r;
     r["output"] = output_.string();
+    r["tiling"] = tiling.has_value();
     context.print(r);
   }
 
@@ -119,6 +132,7 @@ class PlotCommand final : public Command {
   std::filesystem::path overlay_;
   PlotOptions options_;
   std::string view_ = "top";
+  bool tiling_ = true;
 };
 
 }  // namespace

@@ -22,6 +22,9 @@ struct Tiled {
   ExtraWriter extra;
   Report report;
   std::size_t dangling = 0;
+  bool capped = false;          ///< the best chain's search stopped at search.max_steps
+  std::size_t search_steps = 0;
+  std::size_t max_steps = 0;
 };
 
 /// The work shared by `throng tile` and the `tile` step of `throng run`.
@@ -33,7 +36,7 @@ Tiled tile_crowd(TilingJob job, Context& context) {
       tiling::lay_out(job.library, result->tiling, *job.environment.scene.region, job.layout));
   Tiled t;
   t.crowd.motion = laid->motion;
-  t.crowd.scene = job.environment.scene;
+  t.crowd.scene = laid_scene(job.environment, job.layout);
   t.crowd.provenance.credits = job.credits;
   const tiling::TilingReport& r = result->report;
   t.dangling = r.dangling;
@@ -53,18 +56,32 @@ Tiled tile_crowd(TilingJob job, Context& context) {
   t.report["phase1_s"] = best.phase1_seconds;
   t.report["phase2_s"] = best.phase2_seconds;
   t.report["removals"] = best.removals;
+  t.report["search_steps"] = best.search_steps;
+  t.report["search_capped"] = best.search_capped;
   t.report["seconds"] = r.seconds;
   t.report["ranks"] = mpi::size();
+  t.capped = best.search_capped;
+  t.search_steps = best.search_steps;
+  t.max_steps = job.options.search.max_steps;
   auto data = std::make_shared<const TilingJob>(std::move(job));
   t.extra = [data, result, laid](const h5::Group& g) {
-    write_tiling_data(g, data->library, *result, data->environment, check_options_for(data->options), *laid);
+    write_tiling_data(g, data->library, *result, data->environment, check_options_for(data->options), *laid,
+                      data->layout);
   };
   return t;
 }
 
+/// Why dangling ends remain, worded by how the search stopped: at its cap, or because a whole sweep over the
+/// dangling ends placed and removed nothing (every candidate at every end was tried and remembered).
 std::string shortfall(const Tiled& t) {
-  return std::to_string(t.dangling) + " dangling " + (t.dangling == 1 ? "end remains" : "ends remain") +
-         " (search.max_steps or annealing caps reached; raise them, allow more chains, or loosen match/limits)";
+  std::string m = std::to_string(t.dangling) + " dangling " + (t.dangling == 1 ? "end remains" : "ends remain");
+  if (t.capped) {
+    return m + " (the search stopped at search.max_steps = " + std::to_string(t.max_steps) +
+           " placements: raise it, allow more chains, or loosen match/limits)";
+  }
+  return m + " (the search stopped after " + std::to_string(t.search_steps) +
+         " placements because a sweep over the dangling ends changed nothing: no patch fits them; allow more chains, "
+         "add patches whose ends match theirs, or loosen match/limits)";
 }
 
 class TileCommand final : public Command {
@@ -88,9 +105,14 @@ class TileCommand final : public Command {
     context.limit_threads();
 
     const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
+    if (writer) {
+      const AtomicOutput folder_check(output_);  // a missing or read-only folder fails now, not after the tiling
+    }
+    std::vector<std::string> inputs{job_path_.string()};
+    if (!parsed.real_dataset.empty()) inputs.push_back(parsed.real_dataset);
     Tiled t = tile_crowd(std::move(parsed), context);
     const std::vector<std::string> credits = t.crowd.provenance.credits;  // of the real data used, if any
-    t.crowd.provenance = context.provenance(effective, {job_path_.string()});
+    t.crowd.provenance = context.provenance(effective, inputs);
     for (const std::string& c : credits) t.crowd.provenance.credits.push_back(c);
     if (writer) {
       write_crowd_file(output_, t.crowd, t.extra);
@@ -125,7 +147,8 @@ class CheckTilingCommand final : public Command {
   }
 
   void setup(CLI::App& app) override {
-    app.add_option("tiling", path_, "Tiling file written by `throng tile` (.h5)")->required()->check(CLI::ExistingFile);
+    // No ExistingFile check: a missing file is an I/O error (exit 4) from the reader, as for every other input.
+    app.add_option("tiling", path_, "Tiling file written by `throng tile` (.h5)")->required();
     app.add_option("--max-failures", max_failures_, "List at most this many failures (all are counted)")
         ->check(CLI::NonNegativeNumber);
   }

@@ -68,6 +68,45 @@ double nice_length(double target) {
   return 10 * p;
 }
 
+// Where the extra legend entries of every layer go: entries flow left to right from x = 12 and wrap before
+// `width`; the widths are estimated from the text (13 px sans-serif: about 7.2 px a character).
+struct LegendFlow {
+  struct Placed {
+    const PlotLegendEntry* entry;
+    double x;
+    int row;
+  };
+  std::vector<std::vector<Placed>> per_layer;  // per layer, its entries
+  std::vector<int> rows;                       // per layer, rows its entries take
+};
+
+std::size_t glyphs(const std::string& s) {
+  std::size_t n = 0;
+  for (unsigned char c : s) n += (c & 0xC0) != 0x80;
+  return n;
+}
+
+LegendFlow flow_legend(const std::vector<PlotLayer>& layers, double width) {
+  LegendFlow flow;
+  for (const PlotLayer& layer : layers) {
+    std::vector<LegendFlow::Placed> placed;
+    double x = 12;
+    int row = 0;
+    for (const PlotLegendEntry& e : layer.legend) {
+      const double w = 34 + 7.2 * static_cast<double>(glyphs(e.label)) + 16;
+      if (x > 12 && x + w > width - 12) {
+        x = 12;
+        ++row;
+      }
+      placed.push_back({&e, x, row});
+      x += w;
+    }
+    flow.rows.push_back(layer.legend.empty() ? 0 : row + 1);
+    flow.per_layer.push_back(std::move(placed));
+  }
+  return flow;
+}
+
 std::string length_label(double metres) {
   char buffer[32];
   const auto r = std::to_chars(buffer, buffer + sizeof buffer, metres);
@@ -113,6 +152,40 @@ void draw_obstacle(Svg& svg, const View& v, const Obstacle& o, double time, doub
       o.shape);
 }
 
+// A layer's extra legend entries, their first row at baseline `y`.
+void draw_legend_entries(Svg& svg, const std::vector<LegendFlow::Placed>& entries, double y) {
+  for (const LegendFlow::Placed& p : entries) {
+    const PlotLegendEntry& e = *p.entry;
+    const double base = y + 20.0 * p.row;
+    switch (e.symbol) {
+      case PlotLegendEntry::Symbol::line:
+        svg.raw("<line");
+        svg.attr("x1", p.x);
+        svg.attr("y1", base - 4);
+        svg.attr("x2", p.x + 28);
+        svg.attr("y2", base - 4);
+        svg.raw(" stroke=\"" + e.colour + "\" stroke-width=\"3\"/>\n");
+        break;
+      case PlotLegendEntry::Symbol::dot:
+      case PlotLegendEntry::Symbol::ring:
+        svg.raw("<circle");
+        svg.attr("cx", p.x + 14);
+        svg.attr("cy", base - 4);
+        svg.attr("r", 4);
+        if (e.symbol == PlotLegendEntry::Symbol::ring) {
+          svg.raw(" fill=\"none\" stroke=\"" + e.colour + "\" stroke-width=\"1.5\"/>\n");
+        } else {
+          svg.raw(" fill=\"" + e.colour + "\"/>\n");
+        }
+        break;
+    }
+    svg.raw("<text");
+    svg.attr("x", p.x + 34);
+    svg.attr("y", base);
+    svg.raw(">" + escape(e.label) + "</text>\n");
+  }
+}
+
 std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions& options) {
   // Extent of everything drawn.
   Eigen::AlignedBox2d box;
@@ -150,10 +223,13 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   }
   size = box.sizes();
   const double margin = 40;
-  std::size_t legend_lines = options.title.empty() ? 0 : 1;
-  for (const PlotLayer& layer : layers) legend_lines += layer.label.empty() ? 0 : 1;
-  const double top = margin + 20.0 * static_cast<double>(legend_lines);
   const double width = std::max(200.0, options.width_px);
+  const LegendFlow legend = flow_legend(layers, width);
+  std::size_t legend_lines = options.title.empty() ? 0 : 1;
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    legend_lines += (layers[l].label.empty() ? 0 : 1) + static_cast<std::size_t>(legend.rows[l]);
+  }
+  const double top = margin + 20.0 * static_cast<double>(legend_lines);
   const double scale = (width - 2 * margin) / size.x();
   const double height = size.y() * scale + top + margin + 30;
   const View v{box.min().x(), box.max().y(), scale, margin, top};
@@ -291,11 +367,13 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
         for (std::size_t n = 0; n < N; ++n) {
           if (!m.present(static_cast<std::size_t>(frame), n)) continue;
           const auto p = m.position(static_cast<std::size_t>(frame), n);
-          const std::string colour = layer.colour ? *layer.colour : group_colour(m.species[n]);
+          std::optional<std::string> own;
+          if (layer.agent_colour) own = layer.agent_colour(static_cast<std::size_t>(frame), n);
+          const std::string colour = own ? *own : layer.colour ? *layer.colour : group_colour(m.species[n]);
           svg.raw("<circle");
           svg.attr("cx", v.px(p.x()));
           svg.attr("cy", v.py(p.y()));
-          svg.attr("r", std::max(1.5, m.radii[n] * scale));
+          svg.attr("r", std::max(options.min_agent_radius_px, m.radii[n] * scale));
           svg.raw(" fill=\"" + colour + "\"/>\n");
         }
         svg.raw("</g>\n");
@@ -309,7 +387,11 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
       svg.attr("cx", v.px(m.at.x()));
       svg.attr("cy", v.py(m.at.y()));
       svg.attr("r", m.radius_px);
-      svg.raw(" fill=\"" + m.colour + "\" stroke=\"white\" stroke-width=\"0.5\"/>\n");
+      if (m.ring) {
+        svg.raw(" fill=\"none\" stroke=\"" + m.colour + "\" stroke-width=\"1.5\"/>\n");
+      } else {
+        svg.raw(" fill=\"" + m.colour + "\" stroke=\"white\" stroke-width=\"0.5\"/>\n");
+      }
     }
   }
 
@@ -340,8 +422,13 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   // Title and legend, top.
   if (!options.title.empty()) svg.raw("<text x=\"12\" y=\"22\" font-size=\"16\" font-weight=\"bold\">" + escape(options.title) + "</text>\n");
   double ly = options.title.empty() ? 22 : 44;
-  for (const PlotLayer& layer : layers) {
-    if (layer.label.empty()) continue;
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    const PlotLayer& layer = layers[l];
+    if (layer.label.empty()) {
+      draw_legend_entries(svg, legend.per_layer[l], ly);
+      ly += 20.0 * legend.rows[l];
+      continue;
+    }
     const CrowdMotion& m = layer.file->motion;
     std::string text = layer.label + " — " + std::to_string(m.agent_count()) + " agents, " + std::to_string(m.frame_count()) + " frames";
     if (!m.times.empty()) {
@@ -360,6 +447,8 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
     svg.attr("y", ly);
     svg.raw(">" + escape(text) + "</text>\n");
     ly += 20;
+    draw_legend_entries(svg, legend.per_layer[l], ly);
+    ly += 20.0 * legend.rows[l];
   }
   svg.raw("</svg>\n");
   return svg.text();

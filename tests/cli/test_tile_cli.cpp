@@ -2,10 +2,14 @@
 // threads and MPI ranks, the exit codes of bad jobs, impossible libraries and imperfect tilings.
 #include <throng/io/crowd_file.h>
 #include <throng/io/tiling_job.h>
+#include <throng/io/tiling_plot.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cstring>
 #include <fstream>
+#include <iterator>
+#include <map>
 
 #include "test_paths.h"
 
@@ -65,7 +69,8 @@ TEST_CASE("every tile config, shrunk, gives a tiling that check-tiling passes") 
   const std::vector<std::pair<std::string, std::string>> configs = {
       {"tile-static.yaml", "--set characters=16"},
       {"tile-dynamic.yaml", "--set characters=16"},
-      {"tile-control.yaml", "--set characters=20 --set chains=1 --set region.time=[0,12]"},
+      {"tile-control.yaml", "--set characters=20 --set chains=1 --set region.time=[0,12] "
+                            "--set 'keyframes=[{patch: bow_rows, position: [6, 6], angle: 0, time: 4.5}]'"},
       {"tile-repeating.yaml", "--set characters=15 --set region.time=[0,10]"},
       {"tile-objects.yaml", "--set characters=12"},
       {"tile-real.yaml", "--set characters=10 --set library.real.max_pair_patches=4 --set library.real.max_single_patches=4"},
@@ -86,7 +91,17 @@ TEST_CASE("every tile config, shrunk, gives a tiling that check-tiling passes") 
     const CrowdFile crowd = read_crowd_file(out);
     CHECK(crowd.motion.agent_count() > 0);
     CHECK(crowd.scene.region.has_value());
-    if (name == "tile-real.yaml") CHECK_FALSE(crowd.provenance.credits.empty());
+    if (name == "tile-real.yaml") {
+      CHECK_FALSE(crowd.provenance.credits.empty());
+      // The dataset is named by its resolved folder, not relative to the job file.
+      const std::filesystem::path dataset = std::filesystem::weakly_canonical(test::real_data_dir() / "zara01");
+      bool named = false;
+      for (const std::string& in : crowd.provenance.inputs) {
+        named = named || std::filesystem::weakly_canonical(in) == dataset;
+      }
+      CHECK(named);
+      CHECK_THAT(crowd.provenance.options, !Contains("../../shared"));
+    }
   }
 }
 
@@ -148,17 +163,99 @@ TEST_CASE("tile and check-tiling exit codes") {
   SECTION("dangling ends remain: the tiling is written, exit 5; check-tiling lists them, exit 5") {
     write_file(dir / "job.yaml", std::string(small_job) + "search: {max_steps: 0}\n");
     CHECK(run("--quiet tile " + (dir / "job.yaml").string() + " -o " + out.string(), &text) == 5);
-    CHECK_THAT(text, Contains("dangling"));
+    CHECK_THAT(text, Contains("dangling") && Contains("search.max_steps = 0"));
     REQUIRE(std::filesystem::exists(out));
     CHECK(run("--json check-tiling " + out.string(), &text) == 5);
     CHECK_THAT(text, Contains("\"perfect\": false") && Contains("dangles"));
   }
-  SECTION("check-tiling of a crowd file without a tiling: exit 3; of no file: an error") {
+  SECTION("check-tiling of a crowd file without a tiling: exit 3; of no file: exit 4 naming it") {
     write_file(dir / "job.yaml", small_job);
     REQUIRE(run("--quiet tile " + (dir / "job.yaml").string() + " -o " + out.string()) == 0);
     write_crowd_file(dir / "plain.h5", read_crowd_file(out));  // the characters alone, no tiling data
     CHECK(run("check-tiling " + (dir / "plain.h5").string(), &text) == 3);
     CHECK_THAT(text, Contains("tiling"));
-    CHECK(run("check-tiling " + (dir / "missing.h5").string()) != 0);
+    CHECK(run("check-tiling " + (dir / "missing.h5").string(), &text) == 4);
+    CHECK_THAT(text, Contains("missing.h5"));
   }
+  SECTION("an output folder that does not exist: exit 4 before any tiling") {
+    // A job that would take minutes: the folder is checked first, so the error comes at once.
+    const auto started = std::chrono::steady_clock::now();
+    CHECK(run("tile " + config("tile-static.yaml") + " -o " + (dir / "no" / "such" / "x.h5").string(), &text) == 4);
+    CHECK_THAT(text, Contains("no/such"));
+    CHECK(std::chrono::steady_clock::now() - started < std::chrono::seconds(10));
+  }
+  SECTION("a keyframe outside the region: exit 2 naming the keyframe") {
+    write_file(dir / "job.yaml", "region: {min: [0, 0], max: [12, 12], time: [0, 20]}\n"
+                                 "library: {builtin: [locomotion, interaction]}\n"
+                                 "keyframes: [{patch: meet, position: [400, 4], time: 5}]\n");
+    CHECK(run("tile " + (dir / "job.yaml").string() + " -o " + out.string(), &text) == 2);
+    CHECK_THAT(text, Contains("keyframes[0].position") && Contains("400"));
+    CHECK(only_inputs_left(dir));
+  }
+  SECTION("a keyframe of a patch that can never be used: exit 2 at once naming the keyframe and its end") {
+    // box_pickup exits carrying, and nothing in [locomotion, box_pickup] enters carrying.
+    write_file(dir / "job.yaml", "region: {min: [0, 0], max: [12, 12], time: [0, 20]}\n"
+                                 "library: {builtin: [locomotion, box_pickup]}\n"
+                                 "keyframes: [{patch: box_pickup, position: [6, 6], time: 5}]\n");
+    const auto started = std::chrono::steady_clock::now();
+    CHECK(run("tile " + (dir / "job.yaml").string() + " -o " + out.string(), &text) == 2);
+    CHECK_THAT(text, Contains("keyframe 0") && Contains("box_pickup") && Contains("carrying"));
+    CHECK(std::chrono::steady_clock::now() - started < std::chrono::seconds(5));
+    CHECK(only_inputs_left(dir));
+  }
+}
+
+namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::size_t occurrences(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("throng plot of a tiling colours the patches by type and marks the connections and seams") {
+  const auto dir = test::scratch_dir("cli_tile_plot");
+  const auto tiled = dir / "tiled.h5";
+  REQUIRE(run("--quiet tile " + config("tile-repeating.yaml") + " --set characters=15 --set region.time=[0,10] -o " +
+              tiled.string()) == 0);
+  const TilingData data = read_tiling_data(tiled);
+  std::size_t seams = 0, joins = 0;
+  for (const tiling::Connection& c : data.tiling.connections) (c.image == std::array<int, 3>{0, 0, 0} ? joins : seams) += 1;
+  REQUIRE(seams > 0);
+  REQUIRE(joins > 0);
+  std::map<std::size_t, std::size_t> used;
+  for (const tiling::Instance& i : data.tiling.instances) ++used[i.type];
+  REQUIRE(used.size() >= 3);
+
+  REQUIRE(run("plot " + tiled.string() + " -o " + (dir / "tiling.svg").string()) == 0);
+  const std::string svg = read_text(dir / "tiling.svg");
+  // A legend entry per type used, with its count, and a colour of its own (at most 20 types: no colour is
+  // shared) drawn on every fragment path of its instances in each of the 2 × 2 laid copies.
+  REQUIRE(used.size() <= 20);
+  std::size_t rank = 0;
+  for (const auto& [type, count] : used) {
+    INFO(data.library.types[type].name);
+    CHECK(svg.find(">" + data.library.types[type].name + " (" + std::to_string(count) + ")</text>") != std::string::npos);
+    const std::string colour = patch_type_colour(rank++);
+    CHECK(occurrences(svg, "<polyline fill=\"none\" stroke-linejoin=\"round\" stroke=\"" + colour + "\"") ==
+          4 * count * data.library.types[type].fragments.size());
+  }
+  // Connections: a dot at each within the tile, two rings at each seam crossing, in each of the 2 × 2 copies.
+  CHECK(occurrences(svg, "fill=\"#202020\" stroke=\"white\"") == 4 * joins);
+  CHECK(occurrences(svg, "fill=\"none\" stroke=\"#000000\" stroke-width=\"1.5\"/>") == 4 * 2 * seams + 1);  // + legend
+  CHECK(svg.find(">connection (" + std::to_string(joins) + ")</text>") != std::string::npos);
+  CHECK(svg.find(">seam connection (" + std::to_string(seams) + ")</text>") != std::string::npos);
+
+  // --no-tiling: the plain crowd, one colour per species, no patch legend.
+  REQUIRE(run("plot " + tiled.string() + " --no-tiling -o " + (dir / "plain.svg").string()) == 0);
+  const std::string plain = read_text(dir / "plain.svg");
+  CHECK(plain.find("connection (") == std::string::npos);
+  CHECK(occurrences(plain, "<polyline stroke=\"") >= read_crowd_file(tiled).motion.agent_count());
 }

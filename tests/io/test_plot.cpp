@@ -81,3 +81,60 @@ TEST_CASE("extra polylines and markers are drawn in world coordinates") {
   CHECK(svg.find("stroke=\"#123456\"") != std::string::npos);
   CHECK(svg.find("fill=\"#abcdef\"") != std::string::npos);
 }
+
+TEST_CASE("agent discs keep a minimum size in pixels on a large scene") {
+  const auto dir = test::scratch_dir("io_plot_min_disc");
+  // A 140 m course at 1200 px: 8 px a metre, a 0.25 m agent would be a disc of 2 px.
+  CrowdFile f;
+  f.motion = CrowdMotion::with_shape(2, 2, 0.25);
+  f.motion.times = {0.0, 1.0};
+  for (std::size_t t = 0; t < 2; ++t) {
+    f.motion.position(t, 0) = Eigen::Vector3d(0, 0, 0);
+    f.motion.position(t, 1) = Eigen::Vector3d(140, 10, 0);
+  }
+  const auto radii = [&](const PlotOptions& o) {
+    write_plot(dir / "p.svg", {{.file = &f, .label = "course"}}, o);
+    const std::string svg = text(dir / "p.svg");
+    std::vector<double> r;
+    const std::regex circle("<circle cx=\"[-0-9.]+\" cy=\"[-0-9.]+\" r=\"([0-9.]+)\"");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it) {
+      r.push_back(std::stod((*it)[1].str()));
+    }
+    return r;
+  };
+  PlotOptions o;
+  const std::vector<double> r = radii(o);
+  REQUIRE(r.size() == 4);  // 2 agents at 2 frames
+  for (double v : r) CHECK(v == o.min_agent_radius_px);
+  CHECK(o.min_agent_radius_px >= 3.0);
+  // Where the scale makes discs larger than the minimum, they keep their true radius.
+  o.min_agent_radius_px = 0.5;
+  for (double v : radii(o)) CHECK_THAT(v, Catch::Matchers::WithinAbs(0.25 * 1120.0 / 140.0, 0.01));
+}
+
+TEST_CASE("legend entries flow after their layer, ring markers are outlines, agents take their own colours") {
+  const auto dir = test::scratch_dir("io_plot_legend");
+  const CrowdFile f = test::rich_crowd();
+  PlotLayer layer{.file = &f, .label = "tiling"};
+  for (int k = 0; k < 30; ++k) layer.legend.push_back({"patch type number " + std::to_string(k), group_colour(k), PlotLegendEntry::Symbol::line});
+  layer.legend.push_back({"seam", "#000000", PlotLegendEntry::Symbol::ring});
+  layer.markers.push_back({.at = {1, 1}, .colour = "#0a0b0c", .radius_px = 4.0, .ring = true});
+  layer.agent_colour = [](std::size_t, std::size_t agent) -> std::optional<std::string> {
+    if (agent == 0) return "#fedcba";
+    return std::nullopt;
+  };
+  PlotOptions o;
+  o.frames = {2, -1};
+  write_plot(dir / "p.svg", {layer}, o);
+  const std::string svg = text(dir / "p.svg");
+  for (int k = 0; k < 30; ++k) CHECK(svg.find(">patch type number " + std::to_string(k) + "</text>") != std::string::npos);
+  CHECK(count(svg, "fill=\"none\" stroke=\"#0a0b0c\"") == 1);
+  CHECK(count(svg, "fill=\"#fedcba\"") == 2);  // agent 0 at both frames
+  // 30 entries of about 200 px do not fit one 1200 px row: the legend wraps and the drawing starts below it.
+  std::smatch m;
+  REQUIRE(std::regex_search(svg, m, std::regex(">seam</text>")));
+  const std::regex text_y("<text x=\"[0-9.]+\" y=\"([0-9.]+)\">patch type number 29</text>");
+  std::smatch last;
+  REQUIRE(std::regex_search(svg, last, text_y));
+  CHECK(std::stod(last[1].str()) > 44 + 20 * 3);
+}

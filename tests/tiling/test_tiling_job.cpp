@@ -85,6 +85,22 @@ TEST_CASE("tiling job errors are configuration errors naming the place") {
   fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\noutput: {repeat: [2, 1, 1]}\n", "periodic");
   fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nmatch: {distance: -1}\n", "distance");
   fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {}\n", "builtin");
+  // Resources are bounded before anything is allocated (a dense deformation system per type, the index grid),
+  // named by the key that sets them.
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk], builtin_options: {sample_rate: 100000}}\n",
+        "sample_rate");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [locomotion, interaction], "
+        "builtin_options: {sample_rate: 500}}\n",
+        "library.builtin_options.sample_rate = 500 Hz");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nindex: {cell: 1e-6}\n", "index.cell");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\nindex: {cell_time: 1e-9}\n", "index.cell");
+  // A keyframe's centroid and middle time inside the region (not on a periodic axis: it wraps).
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\n"
+        "keyframes: [{patch: walk, position: [400, 4], time: 4}]\n", "keyframes[0].position");
+  fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\n"
+        "keyframes: [{patch: walk, position: [4, 4], time: -3}]\n", "keyframes[0].time");
+  CHECK_NOTHROW(parse("region: {min: [0, 0], max: [8, 8], time: [0, 8], periodic: [true, false, false]}\n"
+                      "library: {builtin: [walk]}\nkeyframes: [{patch: walk, position: [12, 4], time: 4}]\n"));
 }
 
 TEST_CASE("the tiling data written with the characters reads back bit for bit and checks perfect") {
@@ -95,12 +111,30 @@ TEST_CASE("the tiling data written with the characters reads back bit for bit an
   const Characters laid = lay_out(job.library, result.tiling, *job.environment.scene.region, job.layout);
   CrowdFile crowd;
   crowd.motion = laid.motion;
-  crowd.scene = job.environment.scene;
+  crowd.scene = laid_scene(job.environment, job.layout);
   const auto path = test::scratch_dir("tiling_job") / "tiling.h5";
   write_crowd_file(path, crowd, [&](const h5::Group& g) {
-    write_tiling_data(g, job.library, result, job.environment, check_options_for(job.options), laid);
+    write_tiling_data(g, job.library, result, job.environment, check_options_for(job.options), laid, job.layout);
   });
+  // The crowd's scene covers both laid copies along the periodic x axis; the tiling keeps the tile.
+  const CrowdFile read = read_crowd_file(path);
+  REQUIRE(read.scene.region);
+  CHECK(read.scene.region->max.x() == 16.0);
+  CHECK(read.scene.region->max.y() == 8.0);
+  CHECK(read.scene.region->periodic == std::array<bool, 3>{true, false, false});
+  CHECK(has_tiling_data(path));
   const TilingData back = read_tiling_data(path);
+  REQUIRE(back.environment.scene.region);
+  CHECK(back.environment.scene.region->max.x() == 8.0);
+  CHECK(back.repeat == job.layout.repeat);
+  REQUIRE(back.pieces.size() == laid.pieces.size());
+  for (std::size_t a = 0; a < laid.pieces.size(); ++a) {
+    REQUIRE(back.pieces[a].size() == laid.pieces[a].size());
+    for (std::size_t k = 0; k < laid.pieces[a].size(); ++k) {
+      CHECK(back.pieces[a][k].fragment == laid.pieces[a][k].fragment);
+      CHECK(back.pieces[a][k].copy == laid.pieces[a][k].copy);
+    }
+  }
   REQUIRE(back.tiling.instances.size() == result.tiling.instances.size());
   REQUIRE(back.tiling.connections.size() == result.tiling.connections.size());
   for (std::size_t i = 0; i < back.tiling.instances.size(); ++i) {
@@ -121,6 +155,7 @@ TEST_CASE("the tiling data written with the characters reads back bit for bit an
   // A file without tiling data is an input error.
   const auto plain = test::scratch_dir("tiling_job") / "plain.h5";
   write_crowd_file(plain, crowd);
+  CHECK_FALSE(has_tiling_data(plain));
   CHECK_THROWS_AS(read_tiling_data(plain), InputError);
 }
 

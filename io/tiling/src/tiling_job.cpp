@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 namespace throng {
 namespace {
@@ -88,8 +90,11 @@ void bind(OptionBinder& b, Options& o, LayoutOptions& layout) {
   });
 }
 
+// Sample rates above this make patches of tens of thousands of samples, beyond every deformation budget.
+constexpr Range sample_rates{0, 1000, true, false};
+
 void bind_builtin(OptionBinder& b, BuiltinOptions& o) {
-  b.field("sample_rate", o.sample_rate_hz, Range::positive());
+  b.field("sample_rate", o.sample_rate_hz, sample_rates);
   b.field("radius", o.radius_m, Range::positive());
   b.field("walk_speed", o.walk_speed_mps, Range::positive());
   b.field("walk_duration", o.walk_duration_s, Range::positive());
@@ -98,7 +103,7 @@ void bind_builtin(OptionBinder& b, BuiltinOptions& o) {
 }
 
 void bind_real(OptionBinder& b, RealPatchOptions& o) {
-  b.field("sample_rate", o.sample_rate_hz, Range::positive());
+  b.field("sample_rate", o.sample_rate_hz, sample_rates);
   b.field("max_gap", o.max_gap_s, Range::positive());
   b.field("radius", o.radius_m, Range::positive());
   b.field("standing_speed", o.standing_speed_mps, Range::positive());
@@ -205,11 +210,12 @@ TilingJob read_tiling_job(const ConfigNode& job) {
       lib.at("builtin_options").fail(e.what());
     }
   }
+  std::size_t made_count = 0;  // real patches, the last types of the library
   if (const auto real = lib.find("real")) {
-    parsed.real_dataset = real->at("dataset").as_string();
     OptionReader r(*real);
     bind_real(r, parsed.real_options);
-    const std::filesystem::path folder = resolve(*real, parsed.real_dataset);
+    const std::filesystem::path folder = resolve(*real, real->at("dataset").as_string());
+    parsed.real_dataset = std::filesystem::absolute(folder).lexically_normal().string();
     const CrowdFile data = import_real_dataset(folder, RealDatasetOptions{});
     parsed.credits = data.provenance.credits;
     PatchLibrary made;
@@ -218,6 +224,7 @@ TilingJob read_tiling_job(const ConfigNode& job) {
     } catch (const InputError& e) {
       real->fail(std::string(e.what()) + " from " + folder.string());
     }
+    made_count = made.types.size();
     try {
       merge_into(parsed.library, made);
     } catch (const ConfigError& e) {
@@ -285,6 +292,22 @@ TilingJob read_tiling_job(const ConfigNode& job) {
       key.transform.translation = {p[0], p[1]};
       if (const auto a = k.find("angle")) key.transform.angle = a->as_double() * deg;
       key.transform.time_shift = k.at("time").as_double();
+      const Region& region = *parsed.environment.scene.region;
+      for (int a = 0; a < 2; ++a) {
+        if (region.periodic[static_cast<std::size_t>(a)]) continue;
+        if (!(p[static_cast<std::size_t>(a)] >= region.min[a] && p[static_cast<std::size_t>(a)] <= region.max[a])) {
+          std::ostringstream m;
+          m << "the keyframe's position " << "xy"[a] << " = " << p[static_cast<std::size_t>(a)] << " m is outside the region ["
+            << region.min[a] << ", " << region.max[a] << "]: a keyframed patch's centroid must lie inside";
+          k.at("position").fail(m.str());
+        }
+      }
+      if (!region.periodic[2] && !(key.transform.time_shift >= region.t0 && key.transform.time_shift <= region.t1)) {
+        std::ostringstream m;
+        m << "the keyframe's time " << key.transform.time_shift << " s is outside the region's [" << region.t0 << ", "
+          << region.t1 << "]: a keyframed patch's middle time must lie inside";
+        k.at("time").fail(m.str());
+      }
       parsed.keyframes.push_back(key);
     }
   }
@@ -299,6 +322,37 @@ TilingJob read_tiling_job(const ConfigNode& job) {
     validate(parsed.options);
   } catch (const ConfigError& e) {
     job.fail(e.what());
+  }
+
+  // Resources (tile.h), named by the keys that set them, before anything large is allocated.
+  std::size_t largest = 0;
+  double bytes = 0;
+  for (std::size_t k = 0; k < parsed.library.types.size(); ++k) {
+    bytes += deformation_bytes(parsed.library.types[k]);
+    if (parsed.library.types[k].sample_count() > parsed.library.types[largest].sample_count()) largest = k;
+  }
+  if (bytes > max_deformation_bytes) {
+    const PatchType& big = parsed.library.types[largest];
+    const bool real_patch = largest >= parsed.library.types.size() - made_count;
+    const char* key = real_patch ? "library.real.sample_rate" : "library.builtin_options.sample_rate";
+    const double rate = real_patch ? parsed.real_options.sample_rate_hz : parsed.builtin_options.sample_rate_hz;
+    std::ostringstream m;
+    m << key << " = " << rate << " Hz: the patch deformation systems would take " << bytes / 1e9 << " GB ('" << big.name
+      << "' alone has " << big.sample_count() << " samples), more than the " << max_deformation_bytes / 1e9
+      << " GB allowed; lower the sample rate";
+    if (const auto section = lib.find(real_patch ? "real" : "builtin_options")) {
+      if (const auto at = section->find("sample_rate")) at->fail(m.str());
+    }
+    lib.fail(m.str());
+  }
+  const double cells = index_cells(parsed.library, r, parsed.options);
+  if (cells > max_index_cells) {
+    std::ostringstream m;
+    m << "index.cell = " << parsed.options.index.cell_m << " m, index.cell_time = " << parsed.options.index.cell_s
+      << " s: the space-time index would have " << cells << " cells over the region and its margins, more than "
+      << max_index_cells << "; use larger cells or a smaller region";
+    if (const auto index = job.find("index")) index->fail(m.str());
+    job.at("region").fail(m.str());
   }
   job.finish();
   return parsed;
@@ -387,8 +441,48 @@ void put_path(std::vector<double>& out, const Path& p) {
 
 }  // namespace
 
+Scene laid_scene(const Environment& environment, const LayoutOptions& layout) {
+  Scene out = environment.scene;
+  if (!out.region) return out;
+  Region& r = *out.region;
+  const Eigen::Vector3d L = periods(r);
+  r.max.x() = r.min.x() + layout.repeat[0] * (r.max.x() - r.min.x());
+  r.max.y() = r.min.y() + layout.repeat[1] * (r.max.y() - r.min.y());
+  r.t1 = r.t0 + layout.repeat[2] * (r.t1 - r.t0);
+  const std::vector<Obstacle>& own = environment.scene.obstacles;
+  for (int cx = 0; cx < layout.repeat[0]; ++cx) {
+    for (int cy = 0; cy < layout.repeat[1]; ++cy) {
+      if (cx == 0 && cy == 0) continue;
+      const Eigen::Vector2d shift(cx * L.x(), cy * L.y());
+      for (Obstacle o : own) {
+        if (o.is_moving()) {
+          for (PoseKey& k : o.motion) k.translation += shift;
+        } else {
+          std::visit(
+              [&](auto& shape) {
+                using S = std::decay_t<decltype(shape)>;
+                if constexpr (std::is_same_v<S, Circle>) {
+                  shape.center += shift;
+                } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
+                  for (Eigen::Vector2d& v : shape.vertices) v += shift;
+                } else {
+                  shape.a += shift;
+                  shape.b += shift;
+                }
+              },
+              o.shape);
+        }
+        if (!o.name.empty()) o.name += " (copy " + std::to_string(cx) + ", " + std::to_string(cy) + ")";
+        out.obstacles.push_back(std::move(o));
+      }
+    }
+  }
+  return out;
+}
+
 void write_tiling_data(const h5::Group& throng_parameters, const PatchLibrary& library, const TilingResult& result,
-                       const Environment& environment, const CheckOptions& check, const Characters& characters) {
+                       const Environment& environment, const CheckOptions& check, const Characters& characters,
+                       const LayoutOptions& layout) {
   const h5::Group g = throng_parameters.create_group("tiling");
   // The library.
   const h5::Group lib = g.create_group("library");
@@ -463,6 +557,11 @@ void write_tiling_data(const h5::Group& throng_parameters, const PatchLibrary& l
     }
   }
   g.create_group("agents").write("pieces", pieces, {pieces.size() / 6, 6});
+  const Region& tile = *environment.scene.region;
+  g.write("region", std::vector<double>{tile.min.x(), tile.min.y(), tile.max.x(), tile.max.y(), tile.t0, tile.t1}, {6});
+  g.write("region_periodic", std::vector<std::int32_t>{tile.periodic[0], tile.periodic[1], tile.periodic[2]}, {3});
+  g.write("repeat", std::vector<std::int64_t>{layout.repeat[0], layout.repeat[1], layout.repeat[2]}, {3});
+  g.set_attribute("tile_obstacles", static_cast<std::int64_t>(environment.scene.obstacles.size()));
 
   // Check options and the report.
   g.set_attribute("limit_stretch", check.limits.stretch_m);
@@ -506,15 +605,46 @@ double attribute(const h5::Group& g, const std::string& name) {
 
 }  // namespace
 
+bool has_tiling_data(const std::filesystem::path& path) {
+  if (!std::filesystem::exists(path)) throw IoError(path.string() + ": no such file");
+  const h5::File file = h5::File::open(path);
+  if (!file.root().has("parameters")) return false;
+  const h5::Group parameters = file.root().open_group("parameters");
+  return parameters.has("throng") && parameters.open_group("throng").has("tiling");
+}
+
 TilingData read_tiling_data(const std::filesystem::path& path) {
   TilingData out;
   const CrowdFile crowd = read_crowd_file(path);
   out.environment.scene = crowd.scene;
-  if (!crowd.scene.region) throw InputError(path.string() + ": no region in the scene (not written by throng tile?)");
   const h5::File file = h5::File::open(path);
   const h5::Group params = open_throng_parameters(file);
   if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
   const h5::Group g = params.open_group("tiling");
+  // The tile (the scene's region is the laid extent) and its own obstacles (the first ones of the scene).
+  if (g.has("region")) {
+    const std::vector<double> r = doubles(g, "region", 0);
+    const std::vector<std::int32_t> p = g.read_int32("region_periodic", 1).values;
+    if (r.size() != 6 || p.size() != 3) throw InputError(g.where("region") + ": expected 6 bounds and 3 periodic flags");
+    out.environment.scene.region = Region{{r[0], r[1]}, {r[2], r[3]}, r[4], r[5], {p[0] != 0, p[1] != 0, p[2] != 0}};
+    const std::vector<std::int64_t> repeat = ints(g, "repeat", 0);
+    if (repeat.size() != 3) throw InputError(g.where("repeat") + ": expected 3 counts");
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (repeat[a] < 1 || repeat[a] > 1000 || (repeat[a] > 1 && p[a] == 0)) {
+        throw InputError(g.where("repeat") + ": " + std::to_string(repeat[a]) + " copies on axis " + "xyt"[a] +
+                         ", expected 1 to 1000 and 1 on an axis that is not periodic");
+      }
+      out.repeat[a] = static_cast<int>(repeat[a]);
+    }
+  }
+  if (!out.environment.scene.region) throw InputError(path.string() + ": no region in the scene (not written by throng tile?)");
+  if (const auto own = g.double_attribute("tile_obstacles")) {
+    if (!(*own >= 0 && *own <= static_cast<double>(crowd.scene.obstacles.size()))) {
+      throw InputError(g.where() + ": tile_obstacles = " + std::to_string(*own) + " of " +
+                       std::to_string(crowd.scene.obstacles.size()) + " obstacles in the scene");
+    }
+    out.environment.scene.obstacles.resize(static_cast<std::size_t>(*own));
+  }
   const h5::Group lib = g.open_group("library");
   PatchLibrary& L = out.library;
   L.pose_classes = lib.read_strings("pose_classes");
@@ -614,6 +744,20 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
   };
   out.environment.sources = zones("sources");
   out.environment.sinks = zones("sinks");
+  std::uint64_t NP = 0;
+  const std::vector<std::int64_t> pieces = ints(g.open_group("agents"), "pieces", 6, &NP);
+  out.pieces.resize(crowd.motion.agent_count());
+  for (std::size_t k = 0; k < NP; ++k) {
+    const std::int64_t* v = pieces.data() + 6 * k;
+    if (v[0] < 0 || static_cast<std::size_t>(v[0]) >= out.pieces.size() || v[1] < 0 ||
+        static_cast<std::size_t>(v[1]) >= out.tiling.instances.size() || v[2] < 0 ||
+        static_cast<std::size_t>(v[2]) >= out.tiling.instances[static_cast<std::size_t>(v[1])].paths.size()) {
+      throw InputError(g.where("agents/pieces") + ": row " + std::to_string(k) + " names a missing agent, instance or fragment");
+    }
+    out.pieces[static_cast<std::size_t>(v[0])].push_back(
+        {{static_cast<std::uint32_t>(v[1]), static_cast<std::uint32_t>(v[2])},
+         {static_cast<int>(v[3]), static_cast<int>(v[4]), static_cast<int>(v[5])}});
+  }
   CheckOptions& c = out.check;
   c.limits.stretch_m = attribute(g, "limit_stretch");
   c.limits.bend_rad = attribute(g, "limit_bend");

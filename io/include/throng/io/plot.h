@@ -5,7 +5,9 @@
 
 #include <throng/io/crowd_file.h>
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,12 +24,27 @@ struct PlotPolyline {
   bool dashed = false;
 };
 
-/// An extra marker: a small disc (radius in pixels) at a world point, e.g. a connection between patches.
+/// An extra marker: a small disc (radius in pixels) at a world point, e.g. a connection between patches; a ring
+/// (outline only, of `colour`) when `ring` is set, e.g. a connection across the seam of a repeating tile.
 struct PlotMarker {
   Eigen::Vector2d at{0, 0};
   std::string colour = "#000000";
   double radius_px = 3.0;
+  bool ring = false;
 };
+
+/// An extra legend entry after its layer's line: a short line (what polylines of that colour mean), a dot or a
+/// ring (what markers mean). Entries flow left to right and wrap at the picture's width.
+struct PlotLegendEntry {
+  enum class Symbol { line, dot, ring };
+  std::string label;
+  std::string colour = "#000000";
+  Symbol symbol = Symbol::line;
+};
+
+/// The colour of agent `agent` at frame `frame`, overriding the layer's colour and the species colour; none:
+/// the usual colour. For example the patch type a tiling's character walks through at that frame.
+using AgentColour = std::function<std::optional<std::string>(std::size_t frame, std::size_t agent)>;
 
 /// One crowd to draw.
 struct PlotLayer {
@@ -40,11 +57,15 @@ struct PlotLayer {
   bool draw_trajectories = true;       ///< this layer's agents' paths (PlotOptions::trajectories turns all off)
   std::vector<PlotPolyline> polylines; ///< drawn after the trajectories
   std::vector<PlotMarker> markers;     ///< drawn last
+  std::vector<PlotLegendEntry> legend; ///< extra legend entries (empty: only the layer's line)
+  AgentColour agent_colour;            ///< empty: colour by layer or species
 };
 
 struct PlotOptions {
   /// Frames at which agents are drawn as discs of their radius; negative counts from the end (−1 = last).
   std::vector<long> frames{0, -1};
+  /// Smallest disc radius in pixels: on a large scene a 0.25 m agent would otherwise be a dot of 2 px.
+  double min_agent_radius_px = 3.0;
   double width_px = 1200;              ///< picture width; the height follows the scene's aspect ratio
   bool trajectories = true;
   bool obstacles = true;

@@ -12,13 +12,15 @@
 //     builtin_options: {sample_rate: 10, radius: 0.25, walk_speed: 1.3, walk_duration: 2, wait_duration: 2,
 //                       preference_per_character: 1}
 //     real:                          # optional: patches built from recorded trajectories (throng/tiling/construct.h)
-//       dataset: ../shared/data/real/zara01   # a dataset folder (relative: to the job file, else the working dir)
+//       dataset: ../shared/data/real/zara01   # a dataset folder (relative: to the job file, else the working
+//                                    # dir); the effective job and the provenance name the resolved folder
 //       sample_rate: 10              # and every RealPatchOptions field: max_gap, radius, standing_speed,
 //       near: 1.5                    # clean_acceleration, min_contact, margin, reaction_min, synchronicity_min,
 //       max_pair_patches: 20         # single_duration, max_single_patches, preference_per_character
 //     preferences: {meet: 3}         # per type name: the phase-1 sampling weight (> 0), replaces the default
 //   keyframes:                       # user-placed instances (§6 Keyframing): kept as placed, never removed
-//     - {patch: bow_rows, position: [6, 6], angle: 0, time: 1.5}   # centroid, direction (deg), middle time
+//     - {patch: bow_rows, position: [6, 6], angle: 0, time: 1.5}   # centroid, direction (deg), middle time;
+//                                    # centroid and middle time inside the region (periodic axes wrap)
 //   sources: [{center: [x, y], radius: 1, time: [t0, t1]}]   # entries here need no partner (time optional)
 //   sinks:   [{center: [x, y], radius: 1, time: [t0, t1]}]   # exits here need no partner
 //   characters: 0                    # phase 1 adds no patch beyond this many characters (0: no limit)
@@ -40,8 +42,11 @@
 //   obstacle_step_time: 0.05                        # ... and seconds along each path
 //   output: {frame_rate: 10, repeat: [1, 1, 1]}     # the characters' frames; copies of a repeating tile per axis
 //
-// Errors: everything in the job (keys, ranges, unknown patch names, a keyframe naming no patch) is a ConfigError
-// with the line (exit 2); a dataset that cannot be read is an IoError/InputError from the importer.
+// Errors: everything in the job (keys, ranges, unknown patch names, a keyframe naming no patch or placed outside
+// the region or of a patch that can never be used, resources beyond tile.h's limits: the deformation systems'
+// memory, set by the sample rates and patch lengths, and the cells of the space-time index, set by index.cell,
+// index.cell_time and the region) is a ConfigError with the line (exit 2); a dataset that cannot be read is an
+// IoError/InputError from the importer.
 #pragma once
 
 #include <throng/core/scene.h>
@@ -55,6 +60,7 @@
 #include <throng/tiling/patch.h>
 #include <throng/tiling/tile.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -71,7 +77,7 @@ struct TilingJob {
   // What the library was made from, for the effective job.
   std::vector<std::string> builtin;
   tiling::BuiltinOptions builtin_options;
-  std::string real_dataset;          ///< empty: none
+  std::string real_dataset;          ///< the resolved dataset folder; empty: none
   tiling::RealPatchOptions real_options;
   std::vector<std::pair<std::string, double>> preferences;
   std::vector<std::string> credits;  ///< credit lines of the real data used
@@ -86,6 +92,12 @@ struct TilingJob {
 /// The check options that go with a job's tiler options (the same limits and thresholds).
 [[nodiscard]] tiling::CheckOptions check_options_for(const tiling::Options& options);
 
+/// The scene of the laid characters (the crowd file's scene): the region covers every laid copy (repeat[a]
+/// periods along each periodic axis) and keeps the tile's periodic flags (the laid box repeats as the tile does);
+/// obstacles are copied into every laid copy in space (the tile's own first, then copy by copy, x-major).
+/// Moving obstacles follow their motion once: a time copy of a periodic-time tile does not repeat it.
+[[nodiscard]] Scene laid_scene(const tiling::Environment& environment, const tiling::LayoutOptions& layout);
+
 /// Writes /parameters/throng/tiling:
 ///   library/pose_classes string[P]; library/type_name, type_label string[K]; library/type_preference float64[K];
 ///   library/type_fragments int64[K+1] (first fragment of each type); library/fragment int64[F][4] (kind 0
@@ -98,21 +110,31 @@ struct TilingJob {
 ///   connections int64[C][7] (from instance, from fragment, to instance, to fragment, image x, y, t)
 ///   sources, sinks float64[n][5] (centre x, y, radius, t0, t1)
 ///   agents/pieces int64[P][6] (agent, instance, fragment, copy x, y, t): the fragments each output agent walks
-///   attributes: the check options (limits, match, obstacle steps) and the report (dangling, chains, best_chain,
-///   instances, characters, connections, seconds)
+///   region float64[6] (min x, min y, max x, max y, t0, t1) and region_periodic int32[3]: the tile (the crowd's
+///   scene region is the laid extent, see laid_scene); repeat int64[3]: the copies laid per axis
+///   attributes: the check options (limits, match, obstacle steps), tile_obstacles (how many of the scene's
+///   obstacles, the first ones, are the tile's own) and the report (dangling, chains, best_chain, instances,
+///   characters, connections). No wall time: the same seed gives the same file.
 void write_tiling_data(const h5::Group& throng_parameters, const tiling::PatchLibrary& library,
                        const tiling::TilingResult& result, const tiling::Environment& environment,
-                       const tiling::CheckOptions& check, const tiling::Characters& characters);
+                       const tiling::CheckOptions& check, const tiling::Characters& characters,
+                       const tiling::LayoutOptions& layout);
 
-/// What `throng check-tiling` needs from a tiling file.
+/// What `throng check-tiling` and `throng plot` need from a tiling file.
 struct TilingData {
   tiling::PatchLibrary library;
   tiling::Tiling tiling;
-  tiling::Environment environment;
+  tiling::Environment environment;  ///< the tile: its region, its own obstacles, sources and sinks
   tiling::CheckOptions check;
+  std::array<int, 3> repeat{1, 1, 1};                   ///< copies laid per axis
+  std::vector<std::vector<tiling::AgentPiece>> pieces;  ///< per output agent, the fragment copies it walks
 };
 
-/// Reads a crowd file written by `throng tile`. IoError (unreadable), InputError (no tiling data, bad shapes).
+/// Reads a crowd file written by `throng tile`. IoError (missing or unreadable), InputError (no tiling data,
+/// bad shapes).
 [[nodiscard]] TilingData read_tiling_data(const std::filesystem::path& path);
+
+/// Whether a crowd file holds /parameters/throng/tiling. IoError when it cannot be opened.
+[[nodiscard]] bool has_tiling_data(const std::filesystem::path& path);
 
 }  // namespace throng
