@@ -95,10 +95,7 @@ void Context::limit_threads() {
 ConfigNode Context::load_job(const std::filesystem::path& path) const {
   ConfigNode job = ConfigNode::load_file(path);
   if (global.set.empty()) return job;
-  YAML::Node root = job.yaml();
-  if (root.IsNull() || !root.IsDefined()) root = YAML::Node(YAML::NodeType::Map);
-  apply_overrides(root, global.set);
-  return ConfigNode(root, path.string());
+  return job.with_overrides(global.set);
 }
 
 Provenance Context::provenance(const YAML::Node& effective_options, const std::vector<std::string>& inputs,

@@ -33,19 +33,59 @@ std::string shortest(double v) {
   return std::string(buffer, result.ptr);
 }
 
+// True when key path `inner` is `outer` or lies below it ("a.b" and "a.b[2]" lie below "a").
+bool at_or_below(const std::string& inner, const std::string& outer) {
+  return inner == outer || (inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+                            (inner[outer.size()] == '.' || inner[outer.size()] == '['));
+}
+
+// The override that made the node at `path` (its text), when the node has no place in a file (it came from
+// --set) and `path` is the override's key, below it (a value inside it) or above it (a mapping the override
+// created); nullptr otherwise.
+const std::string* override_at(const std::vector<std::pair<std::string, std::string>>* overrides, const std::string& path,
+                               const YAML::Mark& mark) {
+  if (!overrides || mark.line >= 0) return nullptr;
+  for (const auto& [key, text] : *overrides) {
+    if (at_or_below(path, key) || (!path.empty() && at_or_below(key, path))) return &text;
+  }
+  return nullptr;
+}
+
 // Every key, here and below, that nobody asked for: "file:line:col: unknown key 'k' in path (known here: ...)".
-void collect_unknown(const detail::ConfigTracking* t, const std::string& source, std::vector<std::string>& problems) {
+void collect_unknown(const detail::ConfigTracking* t, const std::string& source,
+                     const std::vector<std::pair<std::string, std::string>>* overrides, std::vector<std::string>& problems) {
   if (t->node.IsMap()) {
     for (auto it = t->node.begin(); it != t->node.end(); ++it) {
       const std::string key = it->first.Scalar();
       if (t->asked.count(key)) continue;
       std::string known;
       for (const auto& k : t->asked) known += (known.empty() ? "" : ", ") + k;
-      problems.push_back(source + mark_text(it->first.Mark()) + ": unknown key '" + key + "'" +
+      const std::string* set = override_at(overrides, join_path(t->path, key), it->first.Mark());
+      problems.push_back((set ? "--set " + *set : source + mark_text(it->first.Mark())) + ": unknown key '" + key + "'" +
                          (t->path.empty() ? "" : " in " + t->path) + (known.empty() ? "" : " (known here: " + known + ")"));
     }
   }
-  for (const auto& [key, child] : t->children) collect_unknown(child.get(), source, problems);
+  for (const auto& [key, child] : t->children) collect_unknown(child.get(), source, overrides, problems);
+}
+
+// A copy of `node` built in memory: same values, no marks (so nothing points into the override's own text).
+YAML::Node without_marks(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return YAML::Node(node.Scalar());
+    case YAML::NodeType::Sequence: {
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (const auto& e : node) out.push_back(without_marks(e));
+      out.SetStyle(YAML::EmitterStyle::Flow);
+      return out;
+    }
+    case YAML::NodeType::Map: {
+      YAML::Node out(YAML::NodeType::Map);
+      for (auto it = node.begin(); it != node.end(); ++it) out[it->first.Scalar()] = without_marks(it->second);
+      out.SetStyle(YAML::EmitterStyle::Flow);
+      return out;
+    }
+    default: return YAML::Node(YAML::NodeType::Null);
+  }
 }
 }  // namespace
 
@@ -68,10 +108,16 @@ ConfigNode ConfigNode::parse(const std::string& text, const std::string& source)
 }
 
 ConfigNode::ConfigNode(YAML::Node node, std::string source, std::string key_path)
-    : ConfigNode(std::move(node), std::make_shared<const std::string>(std::move(source)), std::move(key_path), nullptr) {}
+    : ConfigNode(std::move(node), std::make_shared<const std::string>(std::move(source)), std::move(key_path), nullptr,
+                 nullptr) {}
 
-ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> source, std::string path, std::shared_ptr<Tracking> tracking)
-    : node_(std::move(node)), source_(std::move(source)), path_(std::move(path)), tracking_(std::move(tracking)) {
+ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> source, std::string path, std::shared_ptr<Tracking> tracking,
+                       std::shared_ptr<const Overrides> overrides)
+    : node_(std::move(node)),
+      source_(std::move(source)),
+      path_(std::move(path)),
+      tracking_(std::move(tracking)),
+      overrides_(std::move(overrides)) {
   if (!tracking_) {
     tracking_ = std::make_shared<detail::ConfigTracking>();
     tracking_->node = node_;
@@ -86,10 +132,24 @@ ConfigNode ConfigNode::child(const YAML::Node& node, const std::string& path) co
     slot->node = node;
     slot->path = path;
   }
-  return ConfigNode(node, source_, path, slot);
+  return ConfigNode(node, source_, path, slot, overrides_);
+}
+
+ConfigNode ConfigNode::with_overrides(const std::vector<std::string>& overrides) const {
+  if (overrides.empty()) return ConfigNode(node_, source_, path_, nullptr, overrides_);
+  YAML::Node root = node_;
+  if (is_null()) root = YAML::Node(YAML::NodeType::Map);
+  if (!root.IsMap()) fail("a job must hold a mapping of keys to apply --set to");
+  apply_overrides(root, overrides);
+  auto list = std::make_shared<Overrides>(overrides_ ? *overrides_ : Overrides{});
+  for (const auto& o : overrides) list->emplace_back(o.substr(0, o.find('=')), o);
+  return ConfigNode(root, source_, path_, nullptr, std::move(list));
 }
 
 std::string ConfigNode::where() const {
+  if (const std::string* set = override_at(overrides_.get(), path_, node_.Mark())) {
+    return "--set " + *set + (path_ == set->substr(0, set->find('=')) ? "" : " (" + path_ + ")");
+  }
   std::string s = *source_ + mark_text(node_.Mark());
   if (!path_.empty()) s += " (" + path_ + ")";
   return s;
@@ -191,7 +251,7 @@ std::vector<double> ConfigNode::as_doubles(std::initializer_list<std::size_t> si
 
 void ConfigNode::finish() const {
   std::vector<std::string> problems;
-  collect_unknown(tracking_.get(), *source_, problems);
+  collect_unknown(tracking_.get(), *source_, overrides_.get(), problems);
   if (problems.empty()) return;
   std::string message = problems.front();
   for (std::size_t i = 1; i < problems.size(); ++i) message += "\n" + problems[i];
@@ -226,7 +286,7 @@ void apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides
       chain.push_back(next);
     }
     if (parts.back().empty()) throw ConfigError("--set " + o + ": empty key in '" + path + "'");
-    chain.back()[parts.back()] = value;
+    chain.back()[parts.back()] = without_marks(value);
   }
 }
 
@@ -266,8 +326,11 @@ void OptionReader::field(const char* key, int& value, Range range) {
 void OptionReader::field(const char* key, std::size_t& value, Range range) {
   if (auto n = node_.find(key)) {
     const std::int64_t v = n->as_int();
-    if (v < 0 || !range.contains(static_cast<double>(v))) {
-      n->fail("value " + std::to_string(v) + " is out of range, expected " + (v < 0 ? std::string("≥ 0") : range.describe()));
+    // A count is never negative, whatever the range says.
+    Range counts = range;
+    if (!(counts.min >= 0)) counts.min = 0, counts.min_open = false;
+    if (!counts.contains(static_cast<double>(v))) {
+      n->fail("value " + std::to_string(v) + " is out of range, expected " + counts.describe());
     }
     value = static_cast<std::size_t>(v);
   }

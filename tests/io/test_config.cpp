@@ -20,6 +20,7 @@ struct Options {
   std::vector<double> weights{1, 2, 2};
   Mode mode = Mode::stop;
   double inner_radius = 0.5;
+  std::size_t count = 5;
 };
 
 void bind(OptionBinder& b, Options& o) {
@@ -31,10 +32,11 @@ void bind(OptionBinder& b, Options& o) {
   b.field("weights", o.weights);
   b.choice("end_of_path", o.mode, {{"stop", Mode::stop}, {"remove", Mode::remove}});
   b.section("inner", [&](OptionBinder& s) { s.field("radius", o.inner_radius, Range::closed(0, 2)); });
+  b.field("count", o.count, Range::closed(1, 100));
 }
 
-Options read(const std::string& text) {
-  const ConfigNode job = ConfigNode::parse(text, "job.yaml");
+Options read(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  const ConfigNode job = ConfigNode::parse(text, "job.yaml").with_overrides(overrides);
   Options o;
   OptionReader r(job);
   bind(r, o);
@@ -66,7 +68,10 @@ TEST_CASE("out-of-range, wrong-type and non-finite values name the key and line"
   CHECK_THROWS_AS_WITH(read("time_step: .nan\n"), ConfigError, Contains("expected a finite number"));
   CHECK_THROWS_AS_WITH(read("end_of_path: vanish\n"), ConfigError, Contains("expected one of: stop, remove"));
   CHECK_THROWS_AS_WITH(read("inner: {radius: 3}\n"), ConfigError, Contains("expected in [0, 2]"));
-  CHECK_THROWS_AS_WITH(read("steps: -4\n"), ConfigError, Contains("out of range"));
+  CHECK_THROWS_AS_WITH(read("steps: -4\n"), ConfigError, Contains("value -4 is out of range, expected ≥ 0"));
+  // A negative count is out of the count's own range, not merely "≥ 0".
+  CHECK_THROWS_AS_WITH(read("count: -5\n"), ConfigError, Contains("value -5 is out of range, expected in [1, 100]"));
+  CHECK_THROWS_AS_WITH(read("count: 0\n"), ConfigError, Contains("expected in [1, 100]"));
   CHECK_THROWS_AS_WITH(read("time_step: [1\n"), ConfigError, Contains("not valid YAML"));
 }
 
@@ -94,6 +99,29 @@ TEST_CASE("set overrides (--set) reach nested keys and create missing ones") {
   CHECK(o.name == "big crowd");
   CHECK_THROWS_AS(apply_overrides(root, {"agents"}), ConfigError);
   CHECK_THROWS_AS(apply_overrides(root, {"agents.x=1"}), ConfigError);
+}
+
+TEST_CASE("errors in --set values name the override, not a place in the job file") {
+  const std::string job = "time_step: 0.05\ninner: {radius: 1}\n";
+  CHECK(read(job, {"count=7", "inner.radius=0.25"}).count == 7);
+  CHECK_THROWS_AS_WITH(read(job, {"count=-5"}), ConfigError,
+                       Contains("--set count=-5: value -5 is out of range, expected in [1, 100]"));
+  CHECK_THROWS_AS_WITH(read(job, {"inner.radius=9"}), ConfigError, Contains("--set inner.radius=9: value 9 is out"));
+  CHECK_THROWS_AS_WITH(read(job, {"weights=[1, x]"}), ConfigError,
+                       Contains("--set weights=[1, x] (weights[1]): expected a number, found 'x'"));
+  CHECK_THROWS_AS_WITH(read(job, {"inner.radios=1"}), ConfigError,
+                       Contains("--set inner.radios=1: unknown key 'radios' in inner"));
+  CHECK_THROWS_AS_WITH(read(job, {"inner={radius: 1, radios: 2}"}), ConfigError,
+                       Contains("--set inner={radius: 1, radios: 2}: unknown key 'radios' in inner"));
+  // Values still in the file keep their line, also with overrides applied elsewhere.
+  CHECK_THROWS_AS_WITH(read("time_step: -1\n", {"count=7"}), ConfigError, Contains("job.yaml:1:12 (time_step)"));
+  // Without the override list (apply_overrides alone), a value from --set never points at line 1 of the file.
+  YAML::Node root = YAML::Load("time_step: 0.05\n");
+  apply_overrides(root, {"count=-5"});
+  const ConfigNode plain(root, "job.yaml");
+  Options o;
+  OptionReader r(plain);
+  CHECK_THROWS_AS_WITH(bind(r, o), ConfigError, Contains("job.yaml (count): value -5"));
 }
 
 TEST_CASE("lists and missing keys report their place") {

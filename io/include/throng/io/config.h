@@ -38,6 +38,11 @@ class ConfigNode {
   /// Wraps an existing node (for example a step of a `throng run` job).
   ConfigNode(YAML::Node node, std::string source, std::string key_path = {});
 
+  /// This job (a mapping, or empty) with `key.path=value` overrides applied (the --set flag; see
+  /// apply_overrides), read afresh (no key marked used). Messages about an overridden value name the override
+  /// ("--set agents.count=-5: value -5 is out of range ...") instead of a place in the file.
+  [[nodiscard]] ConfigNode with_overrides(const std::vector<std::string>& overrides) const;
+
   /// "file:line:column (key.path)" for messages about this node.
   [[nodiscard]] std::string where() const;
   [[nodiscard]] const std::string& source() const noexcept;
@@ -77,17 +82,22 @@ class ConfigNode {
 
  private:
   using Tracking = detail::ConfigTracking;
-  ConfigNode(YAML::Node node, std::shared_ptr<const std::string> source, std::string path, std::shared_ptr<Tracking> tracking);
+  /// Key path and whole text ("agents.count" and "agents.count=-5") of each override applied to this job.
+  using Overrides = std::vector<std::pair<std::string, std::string>>;
+  ConfigNode(YAML::Node node, std::shared_ptr<const std::string> source, std::string path, std::shared_ptr<Tracking> tracking,
+             std::shared_ptr<const Overrides> overrides);
   ConfigNode child(const YAML::Node& node, const std::string& path) const;
 
   YAML::Node node_;
   std::shared_ptr<const std::string> source_;
   std::string path_;
   std::shared_ptr<Tracking> tracking_;
+  std::shared_ptr<const Overrides> overrides_;  // null when none
 };
 
 /// Applies `key.path=value` overrides (the --set flag) to a YAML mapping; values are parsed as YAML scalars or
-/// flow sequences. ConfigError for a malformed override.
+/// flow sequences, and carry no place in any file (a message about one must not point at the job's line 1).
+/// ConfigError for a malformed override. ConfigNode::with_overrides does this and names the overrides in messages.
 void apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides);
 
 /// A closed or open interval for numeric options.
