@@ -18,6 +18,21 @@
 #define THRONG_VERSION "0.0.0"
 #endif
 
+namespace {
+
+// A CLI11 check for a whole number ≥ 0 written in digits: CLI11 would read "-1" into an unsigned flag as
+// 2^64 − 1, and its NonNegativeNumber message prints the largest double in full.
+CLI::Validator whole_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) return {};
+        return "expected a whole number ≥ 0, found '" + text + "'";
+      },
+      "N ≥ 0");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace throng;
   install_interrupt_cleanup();
@@ -30,8 +45,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1, 1);
   app.fallthrough();
   auto& g = context.global;
-  app.add_option("--threads", g.threads, "Worker threads (0: all hardware threads)")->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", g.seed, "Random seed, written to the output (same seed, same bits)");
+  app.add_option("--threads", g.threads, "Worker threads (0: all hardware threads)")->check(whole_number());
+  app.add_option("--seed", g.seed, "Random seed, written to the output (same seed, same bits)")->check(whole_number());
   app.add_flag("--quiet,-q", g.quiet, "No progress or information on stderr, only warnings and errors");
   app.add_flag("--json", g.json, "Reports on stdout as JSON");
   app.add_flag("--print-config", g.print_config, "Print the effective options as YAML and stop");

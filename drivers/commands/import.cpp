@@ -8,10 +8,33 @@
 #include <throng/io/csv.h>
 #include <throng/io/real_dataset.h>
 
+#include <cmath>
 #include <set>
+#include <string>
 
 namespace throng::cli {
 namespace {
+
+// A CLI11 check: a finite number > 0 (`positive`) or ≥ 0, with a message a person can read (CLI11's
+// PositiveNumber and NonNegativeNumber print the largest double in full, and let NaN through).
+CLI::Validator finite_number(bool positive) {
+  const std::string expected = positive ? "> 0" : "≥ 0";
+  return CLI::Validator(
+      [positive, expected](std::string& text) -> std::string {
+        double v = 0;
+        std::size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(v) || (positive ? !(v > 0) : !(v >= 0))) {
+          return "expected a finite number " + expected + ", found '" + text + "'";
+        }
+        return {};
+      },
+      "NUMBER " + expected);
+}
 
 void bind(OptionBinder& b, RealDatasetOptions& o) {
   b.field("fps", o.video_fps, Range::non_negative());
@@ -39,10 +62,10 @@ class ImportCommand final : public Command {
     app.add_option("dataset", input_, "Dataset folder, its obsmat.txt, or a time,id,x,y,z .csv file")->required();
     app.add_option("-o,--output", output_, "Crowd file to write (.h5)")->required();
     app.add_option("--fps", options_.video_fps, "Video frame rate of obsmat frame numbers (default: known per dataset)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--radius", options_.agent_radius, "Agent radius in metres")->capture_default_str()->check(CLI::NonNegativeNumber);
+        ->check(finite_number(true));
+    app.add_option("--radius", options_.agent_radius, "Agent radius in metres")->capture_default_str()->check(finite_number(false));
     app.add_option("--wall-thickness", options_.wall_thickness, "Thickness of map.xml walls in metres")
-        ->capture_default_str()->check(CLI::NonNegativeNumber);
+        ->capture_default_str()->check(finite_number(false));
   }
 
   void run(Context& context) override {

@@ -134,8 +134,13 @@ CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, con
   const std::string name = std::filesystem::absolute(folder).lexically_normal().filename().string();
 
   double fps = options.video_fps;
+  if (!(fps >= 0.0) || !std::isfinite(fps)) {
+    std::ostringstream m;
+    m << "video frame rate (--fps) = " << fps << ", expected a finite number > 0 (or 0: the known rate of the dataset)";
+    throw ConfigError(m.str());
+  }
   if (fps == 0.0) fps = known_video_fps(name);
-  if (!(fps > 0.0) || !std::isfinite(fps)) {
+  if (!(fps > 0.0)) {
     throw ConfigError("cannot tell the video frame rate of dataset folder '" + name + "': give it with --fps");
   }
   if (!(options.agent_radius >= 0) || !(options.wall_thickness >= 0)) throw ConfigError("radius and wall thickness must be ≥ 0");

@@ -35,6 +35,29 @@ TEST_CASE("help and version exit 0, a bad command line exits 2") {
   CHECK(run("info a.h5 --threads minus-one", &out) == 2);
 }
 
+TEST_CASE("numeric flags out of range exit 2 with a message a person can read") {
+  struct Case {
+    const char* args;
+    const char* message;
+  };
+  const std::vector<Case> cases{
+      {"--seed -1 info a.h5", "--seed: expected a whole number ≥ 0, found '-1'"},  // not 2^64 − 1
+      {"--threads -1 info a.h5", "--threads: expected a whole number ≥ 0, found '-1'"},
+      {"import eth -o a.h5 --fps -3", "--fps: expected a finite number > 0, found '-3'"},
+      {"import eth -o a.h5 --fps nan", "--fps: expected a finite number > 0, found 'nan'"},
+      {"import eth -o a.h5 --fps 0", "--fps: expected a finite number > 0, found '0'"},
+      {"import eth -o a.h5 --radius -0.1", "--radius: expected a finite number ≥ 0, found '-0.1'"},
+      {"import eth -o a.h5 --wall-thickness inf", "--wall-thickness: expected a finite number ≥ 0, found 'inf'"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.args);
+    std::string out;
+    CHECK(run(c.args, &out) == 2);
+    CHECK_THAT(out, Contains(c.message));
+    CHECK(out.size() < 400);  // no range ending in the largest double written out in full
+  }
+}
+
 TEST_CASE("info on a missing file exits 4, on a text file 3, each naming the file") {
   const auto dir = test::scratch_dir("cli_info_errors");
   std::string out;
