@@ -117,6 +117,72 @@ TEST_CASE("1 thread and 2 threads give identical crowds from the large config") 
   CHECK(same_bits(one.motion.positions, two.motion.positions));
 }
 
+TEST_CASE("1 thread and 2 threads write identical files for whole runs of the large config, stop and remove") {
+  // Until every agent has arrived (past the pillars, kiosk, gate and cart; standing or removed at the end),
+  // 1,000 agents (two parallel tasks per step). Every dataset and attribute must agree, bit for bit, except the
+  // command line (it names the thread count and the output).
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_threads_whole");
+  std::ofstream(dir / "compare.py") << R"(
+import sys, h5py, numpy as np
+a, b = h5py.File(sys.argv[1], 'r'), h5py.File(sys.argv[2], 'r')
+def objects(f):
+    names = ['/']
+    f.visit(lambda name: names.append('/' + name))
+    return names
+def same(x, y):
+    x, y = np.asarray(x), np.asarray(y)
+    if x.dtype.kind in 'OSU' or y.dtype.kind in 'OSU':
+        return x.shape == y.shape and x.tolist() == y.tolist()
+    return x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes()
+problems, datasets, attributes = [], 0, 0
+if objects(a) != objects(b):
+    problems.append('objects differ: %s' % sorted(set(objects(a)) ^ set(objects(b))))
+for name in objects(a):
+    if name not in b:
+        continue
+    x, y = a[name], b[name]
+    if isinstance(x, h5py.Dataset):
+        datasets += 1
+        if not same(x[()], y[()]):
+            problems.append('dataset %s differs' % name)
+    if sorted(x.attrs) != sorted(y.attrs):
+        problems.append('attributes of %s differ: %s / %s' % (name, sorted(x.attrs), sorted(y.attrs)))
+    for key in x.attrs:
+        if key == 'command_line' or key not in y.attrs:
+            continue
+        attributes += 1
+        if isinstance(x.attrs[key], h5py.Reference):
+            continue  # object references point into their own file
+        if not same(x.attrs[key], y.attrs[key]):
+            problems.append('attribute %s of %s differs' % (key, name))
+print('\n'.join(problems) if problems else 'identical: %d datasets, %d attributes' % (datasets, attributes))
+)";
+  for (const char* mode : {"stop", "remove"}) {
+    INFO(mode);
+    const std::string job = config("sketch-large.yaml") +
+                            " --set duration=0 --set output_rate=2 --set agents.count=1000 --set end_of_path=" + mode;
+    const auto one = dir / (std::string(mode) + "-1.h5"), two = dir / (std::string(mode) + "-2.h5");
+    std::string report;
+    REQUIRE(run("--quiet --json --threads 1 sketch " + job + " -o " + one.string(), &report) == 0);
+    CHECK_THAT(report, Contains("\"arrived\": 1000"));
+    REQUIRE(run("--quiet --threads 2 sketch " + job + " -o " + two.string()) == 0);
+    std::string output;
+    CHECK(test::run_command(python + " " + (dir / "compare.py").string() + " " + one.string() + " " + two.string(),
+                            &output) == 0);
+    INFO(output);
+    CHECK_THAT(output, Contains("identical: "));
+  }
+  // The comparison can fail: the stop and remove runs differ in positions (NaN once removed) and options.
+  std::string output;
+  test::run_command(python + " " + (dir / "compare.py").string() + " " + (dir / "stop-1.h5").string() + " " +
+                        (dir / "remove-1.h5").string(),
+                    &output);
+  CHECK_THAT(output, Contains("dataset /particles/trajectory/position/value differs") &&
+                         Contains("attribute options of /parameters/throng differs"));
+}
+
 TEST_CASE("with --print-config the effective job is printed and nothing is written") {
   const auto dir = test::scratch_dir("cli_sketch_print");
   write_file(dir / "job.yaml", small_job());
@@ -174,6 +240,53 @@ TEST_CASE("a crowd that cannot finish within max_duration is written, and the ex
   CHECK_THAT(report, Contains("had not reached the end of their path"));
   const CrowdFile f = read_crowd_file(out);
   CHECK(f.motion.times.back() == Approx(5.0));
+  // With --json the report says what was missed, in a field of its own.
+  std::string json;
+  CHECK(run("--quiet --json sketch " + config("sketch-paper.yaml") + " --set max_duration=5 -o " + out.string(),
+            &json) == 5);
+  CHECK_THAT(json, Contains("\"arrived\": 0") &&
+                       Contains("\"shortfall\": \"50 of 50 agents had not reached the end of their path after "
+                                "max_duration = 5 s"));
+}
+
+TEST_CASE("job errors found only when the job is run still name the file and line, or the --set argument") {
+  const auto dir = test::scratch_dir("cli_sketch_late_errors");
+  const auto job = dir / "job.yaml";
+  const auto out = dir / "out.h5";
+  std::string message;
+  SECTION("more agents than the course holds: at agents.count") {
+    write_file(job, small_job("agents: {count: 5000}\n").replace(small_job().find("agents: {count: 8}\n"), 19, ""));
+    CHECK(run("--quiet sketch " + job.string() + " -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("job.yaml:9:17 (agents.count): sketch option agent_count = 5000: only"));
+    write_file(job, small_job());
+    CHECK(run("--quiet sketch " + job.string() + " --set agents.count=5000 -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("--set agents.count=5000: sketch option agent_count = 5000: only"));
+  }
+  SECTION("frames that cannot fit in memory are refused before the run, naming the keys to change") {
+    write_file(job, small_job("output_rate: 100000\nduration: 100000\n").replace(small_job().find("duration: 6\n"), 12, ""));
+    CHECK(run("--quiet sketch " + job.string() + " -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("job.yaml: up to 10000000001 frames (duration 100000 s × output_rate 100000 Hz) of 8 "
+                                 "agents need about 2.56e+03 GB") &&
+                            Contains("lower output_rate, duration or agents.count"));
+    CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set output_rate=1e5 --set max_duration=1e5 -o " +
+                  out.string(),
+              &message) == 2);
+    CHECK_THAT(message, Contains("max_duration 100000 s") && Contains("lower output_rate, max_duration (or set a duration)"));
+  }
+  SECTION("values from --set are named as such, and unknown keys are offered only keys sketch takes") {
+    write_file(job, small_job());
+    CHECK(run("--quiet sketch " + job.string() + " --set time_step=-1 -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("--set time_step=-1: value -1 is out of range, expected > 0"));
+    CHECK(run("--quiet sketch " + job.string() + " --set agents.count=-5 -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("--set agents.count=-5: value -5 is out of range, expected in [1, 1e+08]"));
+    CHECK(run("--quiet sketch " + job.string() + " --set smoothing_windw=3 -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("--set smoothing_windw=3: unknown key 'smoothing_windw'") &&
+                            Contains("smoothing_window") && Contains("obstacles"));
+    CHECK_THAT(message, !Contains("region"));
+    CHECK(run("--quiet sketch " + job.string() + " --set region.min=[0,0] -o " + out.string(), &message) == 2);
+    CHECK_THAT(message, Contains("--set region.min=[0,0] (region): sketch does not use a region"));
+  }
+  CHECK(only_inputs_left(dir));
 }
 
 TEST_CASE("sketch is a step of throng run: a crowd from strokes, plotted, written") {

@@ -129,8 +129,16 @@ SketchJob read_sketch_job(const ConfigNode& job) {
     parsed.drawing.strokes.push_back(read_stroke(lines[i], false, "auxiliary line " + std::to_string(i)));
   }
 
-  parsed.scene = read_scene(job);
-  if (parsed.scene.region) job.at("region").fail("sketch does not use a region");
+  // The scene: obstacles only. read_scene also knows `region`, which sketch does not take; it reads a view of
+  // the job holding just the obstacles, so an unknown-key message never offers `region` as a known key.
+  if (job.is_map() && job.yaml()["region"].IsDefined()) job.at("region").fail("sketch does not use a region");
+  if (auto obstacles = job.find("obstacles")) {
+    YAML::Node only(YAML::NodeType::Map);
+    only["obstacles"] = obstacles->yaml();
+    const ConfigNode scene_job(only, job.source());
+    parsed.scene = read_scene(scene_job);
+    scene_job.finish();
+  }
 
   // Given start positions: their number is the agent count.
   std::optional<ConfigNode> positions;
@@ -161,11 +169,24 @@ SketchJob read_sketch_job(const ConfigNode& job) {
 
   // What only the whole drawing can tell (a zero-length stroke, options the solver rejects): same exit code,
   // pointing at the strokes.
+  sketch::Course course;
   try {
     sketch::validate(o);
-    (void)sketch::analyse_strokes(parsed.drawing.strokes, o);
+    course = sketch::analyse_strokes(parsed.drawing.strokes, o);
   } catch (const Error& e) {
     strokes.fail(e.what());
+  }
+  // Automatic placement: an agent count the course cannot hold is an error at agents.count (at the strokes when
+  // the count is the default). Placement is deterministic and cheap next to the run, which places them again.
+  if (parsed.drawing.initial_positions.empty()) {
+    try {
+      (void)sketch::place_agents(course, o.agent_count, parsed.scene, o);
+    } catch (const ConfigError& e) {
+      std::optional<ConfigNode> count;
+      if (auto agents = job.find("agents")) count = agents->find("count");
+      if (count) count->fail(e.what());
+      strokes.fail(std::string(e.what()) + " (the default agents.count)");
+    }
   }
   return parsed;
 }

@@ -29,7 +29,10 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
   const double dt = options.time_step_s;
   // Frame m is at m / rate; a frame within a billionth of a step of the end still counts.
   const auto last_frame = static_cast<std::size_t>(std::floor(end * options.output_rate_hz * (1 + 1e-12) + 1e-9));
-  if (fixed) motion.positions.reserve((last_frame + 1) * N * 3);
+  // Room for every frame up front (with duration 0, up to max_duration's): no reallocation, whose copy would
+  // need the old and the new block at once. Pages that no frame reaches are never touched.
+  motion.positions.reserve((last_frame + 1) * N * 3);
+  motion.times.reserve(last_frame + 1);
 
   double finish = sim.finished() ? 0.0 : std::numeric_limits<double>::quiet_NaN();
   double reported = 0.0;

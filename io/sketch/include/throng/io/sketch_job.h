@@ -30,7 +30,8 @@
 //
 // The seed of the per-agent draws (Eq. 13) is the program's --seed. The strokes and agent positions are part of
 // the job, so every error in them is a ConfigError (exit 2) naming the line: too few points, a number missing,
-// NaN, main-line times not increasing, a zero-length stroke, an agent starting inside an obstacle.
+// NaN, main-line times not increasing, a zero-length stroke, an agent starting inside an obstacle, more agents
+// than automatic placement fits between the outer auxiliary lines (at agents.count).
 // See throng/sketch/sketch.h for the method and the meaning of each option.
 #pragma once
 
