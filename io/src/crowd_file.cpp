@@ -311,12 +311,14 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
     }
   }
 
-  // Presence: id/value ≥ 0 marks a present agent; its position must be finite. Absent entries become NaN.
+  // Presence: id/value ≥ 0 marks a present agent; without id/value, an agent is absent where its position is
+  // NaN (all three coordinates), as we write it. A present agent's position must be finite: an infinity is never
+  // "absent". Absent entries become NaN.
   for (std::uint64_t t = 0; t < T; ++t) {
     for (std::uint64_t n = 0; n < N; ++n) {
       double* p = m.positions.data() + (t * N + n) * 3;
       const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-      bool present = finite;
+      bool present = !(std::isnan(p[0]) && std::isnan(p[1]) && std::isnan(p[2]));
       if (!per_frame_id.empty()) {
         const std::int64_t id = per_frame_id[t * N + n];
         present = id >= 0;
@@ -326,8 +328,12 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
         }
       }
       if (present && !finite) {
-        throw InputError(trajectory.where("position/value") + ": NaN or infinite position for present agent " +
-                         std::to_string(m.ids[n]) + " at frame " + std::to_string(t));
+        const bool nan = std::isnan(p[0]) || std::isnan(p[1]) || std::isnan(p[2]);
+        throw InputError(trajectory.where("position/value") + ": " + (nan ? "NaN" : "infinite") +
+                         " position for present agent " + std::to_string(m.ids[n]) + " (column " + std::to_string(n) +
+                         ") at frame " + std::to_string(t) +
+                         (per_frame_id.empty() ? " (without id/value, only NaN in all three coordinates means absent)"
+                                               : ""));
       }
       if (!present) p[0] = p[1] = p[2] = absent;
     }

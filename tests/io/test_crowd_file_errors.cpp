@@ -11,12 +11,17 @@
 #include "check_throws.h"
 
 #include <fstream>
+#include <limits>
 
 using namespace throng;
 
 namespace {
 
-enum class Defect { none, missing_position, rank_two, last_axis_two, time_length, nan_present, times_decrease, version_two, id_changes };
+enum class Defect {
+  none, missing_position, rank_two, last_axis_two, time_length, nan_present, times_decrease, version_two, id_changes,
+  // Without an id/value dataset (presence from positions alone):
+  no_ids_absent, no_ids_infinite, no_ids_partly_nan
+};
 
 // A minimal H5MD crowd file (3 frames, 2 agents) written by hand, with one defect.
 void write_by_hand(const std::filesystem::path& path, Defect d) {
@@ -28,6 +33,9 @@ void write_by_hand(const std::filesystem::path& path, Defect d) {
     const h5::Group pos = traj.create_group("position");
     std::vector<double> value{0, 0, 0, 1, 0, 0, 0.1, 0, 0, 1.1, 0, 0, 0.2, 0, 0, 1.2, 0, 0};
     if (d == Defect::nan_present) value[6] = std::nan("");
+    if (d == Defect::no_ids_absent) value[9] = value[10] = value[11] = std::nan("");  // agent 6 absent at frame 1
+    if (d == Defect::no_ids_infinite) value[10] = -std::numeric_limits<double>::infinity();  // agent 6, frame 1, y
+    if (d == Defect::no_ids_partly_nan) value[9] = std::nan("");
     if (d == Defect::rank_two) pos.write("value", value, {3, 6});
     else if (d == Defect::last_axis_two) pos.write("value", std::vector<double>(12, 0.0), {3, 2, 2});
     else if (d != Defect::missing_position) pos.write("value", value, {3, 2, 3});
@@ -38,7 +46,8 @@ void write_by_hand(const std::filesystem::path& path, Defect d) {
     pos.write("step", std::vector<std::int64_t>{0, 1, 2}, {3});
     std::vector<std::int64_t> ids{5, 6, 5, 6, 5, 6};
     if (d == Defect::id_changes) ids[4] = 9;
-    traj.create_group("id").write("value", ids, {3, 2});
+    const bool without_ids = d == Defect::no_ids_absent || d == Defect::no_ids_infinite || d == Defect::no_ids_partly_nan;
+    if (!without_ids) traj.create_group("id").write("value", ids, {3, 2});
     const h5::Group params = root.create_group("parameters").create_group("throng");
     params.set_attribute("format_version", std::int64_t{d == Defect::version_two ? 2 : 1});
     const h5::Group agents = params.create_group("agents");
@@ -100,7 +109,20 @@ TEST_CASE("wrong shape: InputError for a last axis other than 3 and for a time l
 
 TEST_CASE("NaN for a present agent: InputError naming agent and frame") {
   CHECK_THROWS_AS_WITH(read_crowd_file(case_file("nan", Defect::nan_present)), InputError,
-                       Catch::Matchers::Contains("NaN or infinite position for present agent 5 at frame 1"));
+                       Catch::Matchers::Contains("NaN position for present agent 5 (column 0) at frame 1"));
+}
+
+TEST_CASE("without id/value only NaN means absent: an infinite position is an InputError naming it") {
+  const CrowdFile absent = read_crowd_file(case_file("no_ids_absent", Defect::no_ids_absent));
+  CHECK(absent.motion.present(0, 1));
+  CHECK_FALSE(absent.motion.present(1, 1));
+  CHECK(absent.motion.present(2, 1));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("no_ids_inf", Defect::no_ids_infinite)), InputError,
+                       Catch::Matchers::Contains("/particles/trajectory/position/value: infinite position for present "
+                                                 "agent 6 (column 1) at frame 1"));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("no_ids_partly_nan", Defect::no_ids_partly_nan)), InputError,
+                       Catch::Matchers::Contains("position/value: NaN position for present agent 6 (column 1) at frame 1") &&
+                           Catch::Matchers::Contains("only NaN in all three coordinates means absent"));
 }
 
 TEST_CASE("times not increasing: InputError naming the frame") {
