@@ -7,6 +7,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace throng::linalg {
 namespace {
@@ -34,20 +36,40 @@ SparseMatrix normal_matrix(const SparseMatrix& A, const Eigen::VectorXd& w) {
 // The rows `keep` (new index per old row, −1 dropped) of the columns `columns` of M, as a new matrix with
 // `rows` rows. Used to cut Q into Q_FF, Q_FP and Cᵀ into its free and pinned parts.
 SparseMatrix select(const SparseMatrix& M, const std::vector<Index>& keep, Index rows, const std::vector<Index>& columns) {
-  SparseMatrix out(rows, static_cast<Index>(columns.size()));
-  Eigen::VectorXi counts = Eigen::VectorXi::Zero(out.cols());
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    for (SparseMatrix::InnerIterator it(M, columns[c]); it; ++it) counts[static_cast<Index>(c)] += keep[static_cast<std::size_t>(it.row())] >= 0;
+  // Compressed arrays written directly: one counting pass, one filling pass. (Eigen's reserve() on a matrix
+  // with no column writes out of bounds.)
+  const auto cols = static_cast<Index>(columns.size());
+  std::vector<int> outer(static_cast<std::size_t>(cols) + 1, 0);
+  for (Index c = 0; c < cols; ++c) {
+    int count = 0;
+    for (SparseMatrix::InnerIterator it(M, columns[static_cast<std::size_t>(c)]); it; ++it) count += keep[static_cast<std::size_t>(it.row())] >= 0;
+    outer[static_cast<std::size_t>(c) + 1] = outer[static_cast<std::size_t>(c)] + count;
   }
-  out.reserve(counts);
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    for (SparseMatrix::InnerIterator it(M, columns[c]); it; ++it) {
+  const auto nnz = static_cast<std::size_t>(outer.back());
+  std::vector<int> inner(nnz);
+  std::vector<double> values(nnz);
+  std::vector<std::pair<int, double>> column;
+  for (Index c = 0; c < cols; ++c) {
+    const auto begin = static_cast<std::size_t>(outer[static_cast<std::size_t>(c)]);
+    auto k = begin;
+    bool sorted = true;
+    for (SparseMatrix::InnerIterator it(M, columns[static_cast<std::size_t>(c)]); it; ++it) {
       const Index r = keep[static_cast<std::size_t>(it.row())];
-      if (r >= 0) out.insert(r, static_cast<Index>(c)) = it.value();
+      if (r < 0) continue;
+      sorted = sorted && (k == begin || inner[k - 1] < r);
+      inner[k] = static_cast<int>(r);
+      values[k++] = it.value();
     }
+    if (sorted) continue;
+    // `keep` is not increasing (pin slots follow the caller's order): sort the column's rows.
+    column.clear();
+    for (std::size_t e = begin; e < k; ++e) column.emplace_back(inner[e], values[e]);
+    std::sort(column.begin(), column.end());
+    for (std::size_t e = begin; e < k; ++e) std::tie(inner[e], values[e]) = column[e - begin];
   }
-  out.makeCompressed();
-  return out;
+  SparseMatrix out(rows, cols);
+  if (nnz == 0) return out;
+  return SparseMatrix(Eigen::Map<const SparseMatrix>(rows, cols, static_cast<Index>(nnz), outer.data(), inner.data(), values.data()));
 }
 
 std::vector<Index> iota(Index n) {
