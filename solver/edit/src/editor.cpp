@@ -278,6 +278,11 @@ void Editor::precompute() {
   s.report.fallback = s.step1_solver.report().factorization.fallback_reason;
   s.report.factor_nonzeros = s.step1_solver.report().factorization.factor_nonzeros +
                              (s.options.scale_compensation ? s.step2_solver.report().factorization.factor_nonzeros : 0.0);
+  s.report.reciprocal_condition = s.step1_solver.report().factorization.reciprocal_condition;
+  if (s.options.scale_compensation) {
+    const double step2 = s.step2_solver.report().factorization.reciprocal_condition;
+    if (step2 > 0 && (s.report.reciprocal_condition <= 0 || step2 < s.report.reciprocal_condition)) s.report.reciprocal_condition = step2;
+  }
   s.update_counts();
 }
 
@@ -317,12 +322,18 @@ const Report& Editor::report() const noexcept { return state_->report; }
 const Options& Editor::options() const noexcept { return state_->options; }
 
 Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request) {
-  if (options.local.parts > 0) return edit_locally(crowd, options, request);
-  Editor editor(crowd, options, request);
-  editor.precompute();
-  const auto& samples = editor.deform(request);
-  const Clip& clip = editor.graph().clip;
-  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
+  Result result;
+  if (options.local.parts > 0) {
+    result = edit_locally(crowd, options, request);
+  } else {
+    Editor editor(crowd, options, request);
+    editor.precompute();
+    const auto& samples = editor.deform(request);
+    const Clip& clip = editor.graph().clip;
+    result = {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
+  }
+  result.report.max_output_residual = max_request_residual(crowd, result.crowd, result.first_frame, request);
+  return result;
 }
 
 }  // namespace throng::edit

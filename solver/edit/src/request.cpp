@@ -63,7 +63,7 @@ std::pair<std::size_t, std::size_t> clamp_range(const Clip& clip, Frame first, F
     throw ConfigError(where + ": frames [" + std::to_string(first) + ", " + std::to_string(last) + "] are outside the clip " +
                       clip_range(clip));
   }
-  return {static_cast<std::size_t>(std::max(a, static_cast<long>(clip.first_frame))), static_cast<std::size_t>(b)};
+  return {static_cast<std::size_t>(std::max(a, static_cast<long>(clip.first_frame))), static_cast<std::size_t>(std::min(b, end))};
 }
 
 // Samples whose source frame lies in [first, last] (already clamped); a ConfigError when there is none.
@@ -159,8 +159,7 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
     const std::string where = "drags[" + std::to_string(k) + "]";
     (void)selected_agents(clip, crowd_ids, d.selection.agents, where);
     const auto [first, last] = clamp_range(clip, d.selection.first_frame, d.selection.last_frame, where);
-    frames.push_back(first);
-    frames.push_back(last);
+    for (std::size_t f = first; f <= last; ++f) frames.push_back(f);
   }
   for (std::size_t k = 0; k < request.constraints.size(); ++k) {
     const std::string where = "constraints[" + std::to_string(k) + "]";
@@ -182,8 +181,7 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
               }
             }
             const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
-            frames.push_back(first);
-            frames.push_back(last);
+            for (std::size_t f = first; f <= last; ++f) frames.push_back(f);
           }
         },
         request.constraints[k]);

@@ -28,8 +28,9 @@ struct ResolvedRequest {
   [[nodiscard]] Eigen::VectorXd pin_values() const;
 };
 
-/// The source frames the request names, to be made samples: pin frames, both frames of each velocity, and the
-/// first and last frame of every range (clamped to the clip). Validates agents and frames against `clip`
+/// The source frames the request names, to be made samples: pin frames, both frames of each velocity, and every
+/// frame of every drag and constraint range (clamped to the clip), so that the output, which passes through the
+/// samples, meets each handle and constraint at every frame it covers (not only at the regular samples). Validates agents and frames against `clip`
 /// (built without them; crowd_ids are all the crowd's ids, for messages) and throws ConfigError naming the entry, for example "pins[2].frame 400 is outside
 /// the clip [0, 299]" or "drags[0].agents: agent 17 is absent at some frames of the clip ...".
 [[nodiscard]] std::vector<std::size_t> required_frames(const Request& request, const Clip& clip,

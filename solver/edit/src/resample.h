@@ -1,4 +1,5 @@
-// The edited clip at the source frame rate: natural cubic spline interpolation of the displacement.
+// The edited clip at the source frame rate: the edited samples joined by natural cubic splines, with the
+// original's detail between samples carried along with each agent's local motion.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -18,8 +19,13 @@ namespace throng::edit {
 /// radii and species. Frame f of the slice is source frame clip.first_frame + f; agent j is the clip's agent j.
 [[nodiscard]] CrowdMotion slice_clip(const CrowdMotion& crowd, const Clip& clip);
 
-/// The edited clip: each position of `slice` plus the spline of (edited − original) through the samples,
-/// evaluated at every frame time (z kept); at sample frames exactly the edited position.
+/// The edited clip. At a sample frame: the edited position exactly. Between samples, per agent, with S_e and S_o
+/// the natural cubic splines through its edited and its original samples and p(t) its original position:
+///   p'(t) = S_e(t) + R(θ(t)) (p(t) − S_o(t)),
+/// where θ is the spline through the agent's turn at each sample (the rotation that best maps its motion edges
+/// to the samples before and after onto their edited copies; the whole formation's turn at that sample when the
+/// agent stands still), unwrapped along time. A rigid motion of every sample (same R, T) gives R p(t) + T at
+/// every frame; unchanged samples give p(t) back; z is kept.
 ///   edited  #samples*#agents by 2 (rows as clip.vertex)
 [[nodiscard]] CrowdMotion resample_clip(const CrowdMotion& slice, const Clip& clip,
                                         const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& edited);

@@ -15,18 +15,21 @@
 //    the original triangle onto the step-1 triangle: the optimal similarity and the optimal rotation share
 //    the angle arg Σ conj(p_k − p̄)(q_k − q̄). That formula is used; a collapsed step-1 triangle keeps angle 0.
 //  * Unknowns are x and y interleaved per vertex (2 per vertex): R90 couples them (Eq. 1).
-//  * A handle (pin or drag) sets a vertex; two handles on one vertex must agree (else: contradictory). A
-//    selection over a frame range acts on the samples in the range; its end frames become samples.
-//  * General constraints act on the samples they name: relative position of two agents (p_a − p_b = offset,
-//    default the original offset), velocity at a frame ((p(f+1) − p(f)) / (t(f+1) − t(f)), both frames made
-//    samples so the output meets it exactly; at the clip's last frame the backward difference), and motion
-//    along a line (the normal component of p − point is 0).
+//  * A handle (pin or drag) sets a vertex; two handles on one vertex must agree (else: contradictory). Every
+//    frame of a drag's range becomes a sample, so the output holds the rigid map at every frame it covers, not
+//    only at the regular samples (the extra vertices are handles: eliminated, they add no unknowns).
+//  * General constraints: relative position of two agents (p_a − p_b = offset, default the original offset),
+//    velocity at a frame ((p(f+1) − p(f)) / (t(f+1) − t(f)); at the clip's last frame the backward difference),
+//    and motion along a line (the normal component of p − point is 0). Every frame they cover becomes a sample,
+//    so the output meets them at every frame (a long constraint range adds samples for every agent: unknowns).
 //  * Every connected part of the graph (through features) needs two handled vertices at distinct original
 //    places: otherwise its position, rotation and scale are free and the system is singular (NumericalError
 //    naming the agents). Constraints do not count toward this.
-//  * Output: the edited clip at the source frame rate. The displacement (edited − original) at the samples is
-//    interpolated with a natural cubic spline in time and added to the original positions, so every sample is
-//    met exactly and the detail between samples is kept (z is kept as is). The time warp is another method.
+//  * Output: the edited clip at the source frame rate, through every edited sample exactly. Between samples each
+//    agent follows the natural cubic spline of its edited samples plus the original's detail off the spline of
+//    its original samples, turned with the agent's local rotation (interpolated from its turn at the samples):
+//    a rigid motion of every handle is then a rigid motion of every output frame, and the gait's sway stays
+//    across the new heading (z is kept as is). The time warp is another method.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -145,10 +148,17 @@ struct Report {
   double solve_seconds = 0;      ///< last deform(): step 1, fitting, step 2
   std::string factorization;     ///< backend method of step 1 (for example "CHOLMOD supernodal LLᵀ (METIS)")
   std::string fallback;          ///< non-empty when the backend fell back, saying why
-  double max_constraint_residual = 0;  ///< metres, over both steps, last deform()
+  double max_constraint_residual = 0;  ///< metres, general constraints at the samples, over both steps, last deform()
+  /// metres: the largest violation of a handle or constraint at any output frame it covers (velocity: times
+  /// Δt), measured on the resampled output by max_request_residual(); set by edit_group_motion and the program
+  double max_output_residual = 0;
   int factorizations = 0;              ///< numeric factorisations so far, both steps (a drag adds none)
   int schur_columns = 0;               ///< back-substitutions spent on constraint columns so far, both steps
   double factor_nonzeros = 0;          ///< entries of both steps' Cholesky factors, last precompute (direct backends)
+  /// The smaller of both steps' reciprocal condition estimates, last precompute (direct backends; 0 when the
+  /// backend gives none). Rounding in a solve moves vertices by about unknowns · ε / reciprocal_condition times
+  /// the scene's size: the tests derive their tolerances from it.
+  double reciprocal_condition = 0;
   // Local edits only (Options::local.parts > 0), last deform():
   int parts = 0;                       ///< parts of the partition
   int region_parts = 0;                ///< parts solved
@@ -176,7 +186,8 @@ class Editor {
 
   /// Deforms for `request`. Same handled vertices and constraint kinds as before: back-substitutions only;
   /// otherwise the handles or constraints are replaced first (refactorisation, or a new Schur complement).
-  /// Every frame it names must be a sample of this editor's clip (the constructor's request decides them).
+  /// Every frame it names must be a sample of this editor's clip (the constructor's request decides them: its pin
+  /// and velocity frames and every frame of its ranges).
   /// Returns the final sample positions; throws NumericalError for contradictory constraints or handles.
   [[nodiscard]] const Eigen::Matrix<double, Eigen::Dynamic, 2>& deform(const Request& request);
 
@@ -209,6 +220,13 @@ struct Result {
 /// One-off: build, precompute and deform once (what `throng edit` runs). With options.local.parts > 0 the edit
 /// is local (a LocalEditor on the input positions): vertices outside the region keep their input positions.
 [[nodiscard]] Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request);
+
+/// The largest violation (metres) of `request` by `edited`, an edited clip at the source rate as Editor::resample
+/// returns it (input frames first_frame.., agents by id): every pin, every drag target and every general
+/// constraint at every frame it covers (a velocity as |Δp − v Δt|). `crowd` is the input the request refers to.
+/// The request must fit (the editor checked it); otherwise std::invalid_argument.
+[[nodiscard]] double max_request_residual(const CrowdMotion& crowd, const CrowdMotion& edited, std::size_t first_frame,
+                                          const Request& request);
 
 /// Checks option values (weights finite and ≥ 0, at least one term with a positive weight); throws ConfigError
 /// naming the option. Called by Editor; exposed for job parsers that want to fail early.
