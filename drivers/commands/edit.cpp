@@ -1,6 +1,8 @@
 // throng edit CROWD.h5 --job EDIT.yaml -o OUT.h5 [--backend eigen|petsc]: deform a group motion by pinning and
 // dragging agents while keeping its formations and trajectories (group motion editing, solver/edit).
 // The job format is in io/edit/include/throng/io/edit_job.h; docs/commands/edit.md is the README section.
+// Output: the whole input crowd with the edited clip put back (solver/edit output.h), or only the clip with
+// --clip-only (job key clip_only).
 // With local.parts > 0 (or --local-parts) the edit is local (solver/edit local_edit.h): only the parts it reaches
 // are solved; docs/commands/scale.md describes it.
 //
@@ -8,10 +10,12 @@
 // the ranks; rank 0 writes the output and prints the report.
 #include <throng/core/errors.h>
 #include <throng/edit/local_edit.h>
+#include <throng/edit/output.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/edit_job.h>
 #include <throng/linalg/mpi.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -60,18 +64,50 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
   if (!r.left_out.empty()) {
     std::ostringstream ids;
     for (std::size_t k = 0; k < r.left_out.size() && k < 10; ++k) ids << (k ? ", " : "") << r.left_out[k];
-    context.warn("edit: " + std::to_string(r.left_out.size()) + " agent(s) absent from part of the clip were left out (" +
-                 ids.str() + (r.left_out.size() > 10 ? ", ..." : "") + ")");
+    context.warn("edit: " + std::to_string(r.left_out.size()) + " agent(s) absent from part of the clip were not edited (" +
+                 ids.str() + (r.left_out.size() > 10 ? ", ..." : "") + ")" +
+                 (job.clip_only ? " and are not in the clip-only output" : "; the output keeps them as they are"));
   }
   if (!r.fallback.empty()) context.warn("edit: " + r.fallback);
+  // The request measured on the output frames (the solver's own check sees the samples only).
+  result->report.max_output_residual = edit::max_request_residual(input.motion, result->crowd, result->first_frame, job.request);
 
   Edited e;
-  e.crowd.motion = result->crowd;
   e.crowd.scene = input.scene;
-  e.extra = [result](const h5::Group& g) { write_edit_data(g, *result); };
-  e.report["agents"] = result->crowd.agent_count();
-  e.report["frames"] = result->crowd.frame_count();
+  const double seam = edit::seam_jump(input.motion, result->crowd, result->first_frame);
+  if (job.clip_only) {
+    e.crowd.motion = edit::clip_with_velocities(input.motion, result->crowd);
+    // Formation edges name agent indices: keep the pairs of clip agents, renumbered.
+    std::vector<std::int32_t> clip_index(input.motion.agent_count(), -1);
+    for (std::size_t j = 0; j < result->crowd.agent_count(); ++j) {
+      for (std::size_t a = 0; a < input.motion.agent_count(); ++a) {
+        if (input.motion.ids[a] == result->crowd.ids[j]) clip_index[a] = static_cast<std::int32_t>(j);
+      }
+    }
+    for (const auto& [a, b] : input.formation_edges) {
+      if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= clip_index.size() || static_cast<std::size_t>(b) >= clip_index.size()) continue;
+      if (clip_index[a] >= 0 && clip_index[b] >= 0) e.crowd.formation_edges.push_back({clip_index[a], clip_index[b]});
+    }
+  } else {
+    e.crowd.motion = edit::embed_clip(input.motion, result->crowd, result->first_frame);
+    e.crowd.formation_edges = input.formation_edges;  // same agents, same indices
+    if (seam > 1e-6) {
+      std::ostringstream text;
+      text.precision(3);
+      text << "edit: the edit moves agents by up to " << seam << " m at a clip end that joins unedited frames (clip "
+           << result->first_frame << ".." << result->last_frame << " of 0.." << input.motion.frame_count() - 1
+           << "): the output jumps there; hold the clip's ends or use --clip-only";
+      context.warn(text.str());
+    }
+  }
+  const bool clip_only = job.clip_only;
+  e.extra = [result, clip_only, seam](const h5::Group& g) { write_edit_data(g, *result, clip_only, seam); };
+  e.report["agents"] = e.crowd.motion.agent_count();
+  e.report["frames"] = e.crowd.motion.frame_count();
+  e.report["clip_only"] = job.clip_only;
+  e.report["clip_agents"] = result->crowd.agent_count();
   e.report["clip_frames"] = {result->first_frame, result->last_frame};
+  e.report["seam_jump_m"] = seam;
   e.report["samples"] = r.samples;
   e.report["unknowns"] = r.unknowns;
   e.report["features"] = r.spatial_features + r.temporal_features + r.spatiotemporal_features;
@@ -84,7 +120,8 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
   e.report["graph_s"] = r.graph_seconds;
   e.report["precompute_s"] = r.precompute_seconds;
   e.report["solve_s"] = r.solve_seconds;
-  e.report["max_constraint_residual_m"] = r.max_constraint_residual;
+  // Pins, drags and constraints on every written frame they cover (velocity: |Δp − v Δt|).
+  e.report["max_constraint_residual_m"] = std::max(r.max_constraint_residual, result->report.max_output_residual);
   if (job.options.local.parts > 0) {
     e.report["parts"] = r.parts;
     e.report["region_parts"] = r.region_parts;
@@ -105,7 +142,9 @@ class EditCommand final : public Command {
   void setup(CLI::App& app) override {
     app.add_option("crowd", input_, "Crowd file to edit (.h5)")->required();
     app.add_option("--job", job_path_, "Edit job (.yaml): clip, pins, drags, constraints, weights, solver")->required();
-    app.add_option("-o,--output", output_, "Crowd file to write (.h5): the edited clip")->required();
+    app.add_option("-o,--output", output_, "Crowd file to write (.h5): the input crowd with the clip edited")->required();
+    app.add_flag("--clip-only", clip_only_, "Write only the clip (its frames and the agents it edited), not the whole crowd "
+                                            "(sets the job's clip_only)");
     app.add_option("--backend", backend_, "Solver backend, overriding the job's solver.backend")
         ->check(CLI::IsMember({"eigen", "petsc"}));
     app.add_option("--local-parts", local_parts_,
@@ -123,6 +162,7 @@ class EditCommand final : public Command {
     if (!backend_.empty()) parsed.options.solver.backend = backend_;
     if (local_parts_) parsed.options.local.parts = *local_parts_;
     if (halo_) parsed.options.local.halo = *halo_;
+    if (clip_only_) parsed.clip_only = true;
     const YAML::Node effective = effective_edit_job(parsed);
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
@@ -163,6 +203,7 @@ class EditCommand final : public Command {
   std::string backend_;
   std::optional<int> local_parts_;
   std::optional<int> halo_;
+  bool clip_only_ = false;
 };
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
+#include <iterator>
 
 using namespace throng;
 using Catch::Matchers::Contains;
@@ -44,7 +46,7 @@ constraints:
 
 }  // namespace
 
-TEST_CASE("edit writes the edited clip and reports it") {
+TEST_CASE("edit writes the edited crowd and reports it") {
   const auto dir = test::scratch_dir("cli_edit");
   const auto input = write_input(dir);
   const auto job = write_job(dir, "job.yaml", drag_job);
@@ -73,6 +75,86 @@ TEST_CASE("edit writes the edited clip and reports it") {
   const h5::File file = h5::File::open(output);
   const h5::Group g = open_throng_parameters(file).open_group("edit");
   CHECK(g.read_int64("sample_frames", 1).values.size() == 24);
+}
+
+TEST_CASE("edit puts the edited clip back into the whole crowd: same agents, ids and frames") {
+  // 41 frames of 20 agents; agent 119 leaves after frame 30; the clip is frames 10..35, so 119 is not edited
+  // and frames 0..9 and 36..40 lie outside. The input has velocities and formation edges.
+  const auto dir = test::scratch_dir("cli_edit_whole");
+  CrowdFile file;
+  file.motion = test::marching_grid(4, 5, 41, 1.0, 1.2, 0.1, 0.3, 0.2);
+  file.motion.velocities.assign(file.motion.positions.size(), 0.5);
+  for (std::size_t f = 31; f < 41; ++f) file.motion.position(f, 19).setConstant(absent);
+  file.formation_edges = {{0, 1}, {3, 19}, {7, 12}};
+  write_crowd_file(dir / "in.h5", file);
+  const auto job = write_job(dir, "job.yaml", R"(
+clip: {first_frame: 10, last_frame: 35, sample_step: 3}
+drags:
+  - {frames: [10, 12]}
+  - {frames: [-3, end], offset: [2, 1]}
+)");
+  std::string out, err;
+  // Warnings go to stderr, the report to stdout: keep them apart.
+  REQUIRE(test::run_command("(" + throng_cmd("-q --json edit " + (dir / "in.h5").string() + " --job " + job.string() + " -o " +
+                                             (dir / "out.h5").string()) +
+                                " 2>" + (dir / "err.txt").string() + ")",
+                            &out) == 0);
+  const auto report = nlohmann::json::parse(out);
+  CHECK(report["agents"] == 20);
+  CHECK(report["frames"] == 41);
+  CHECK(report["clip_agents"] == 19);
+  CHECK(report["left_out"] == 1);
+  // The tail drag reaches the clip's last frame (35), which joins unedited frame 36: a seam of the offset.
+  CHECK_THAT(report["seam_jump_m"].get<double>(), Catch::Matchers::WithinAbs(std::sqrt(5.0), 1e-9));
+  std::ifstream err_file(dir / "err.txt");
+  const std::string warnings((std::istreambuf_iterator<char>(err_file)), {});
+  CHECK_THAT(warnings, Contains("not edited (119)") && Contains("jumps there"));
+
+  const CrowdFile in = read_crowd_file(dir / "in.h5"), edited = read_crowd_file(dir / "out.h5");
+  REQUIRE(edited.motion.ids == in.motion.ids);
+  REQUIRE(edited.motion.times == in.motion.times);
+  CHECK(edited.formation_edges == in.formation_edges);
+  REQUIRE(edited.motion.velocities.size() == in.motion.velocities.size());
+  auto same_position = [&](std::size_t f, std::size_t a) {
+    return in.motion.present(f, a) ? edited.motion.position(f, a) == in.motion.position(f, a) : !edited.motion.present(f, a);
+  };
+  auto same_velocity = [&](std::size_t f, std::size_t a) {
+    const std::size_t k = in.motion.index(f, a);
+    return std::equal(in.motion.velocities.begin() + static_cast<long>(k), in.motion.velocities.begin() + static_cast<long>(k + 3),
+                      edited.motion.velocities.begin() + static_cast<long>(k));
+  };
+  bool outside_kept = true, left_out_kept = true;
+  for (std::size_t f = 0; f < 41; ++f) {
+    for (std::size_t a = 0; a < 20; ++a) {
+      const bool in_clip = f >= 10 && f <= 35 && a != 19;
+      if (!in_clip) outside_kept = outside_kept && same_position(f, a) && same_velocity(f, a);
+      if (a == 19) left_out_kept = left_out_kept && same_position(f, a);
+    }
+  }
+  CHECK(outside_kept);
+  CHECK(left_out_kept);
+  // Inside the clip: the drags hold on every frame, and the velocities describe the new motion.
+  for (std::size_t a = 0; a < 19; ++a) {
+    CHECK(edited.motion.position(11, a) == in.motion.position(11, a));
+    CHECK((edited.motion.position(34, a) - in.motion.position(34, a) - Eigen::Vector3d(2, 1, 0)).norm() < 1e-9);
+  }
+  const double dt = in.motion.times[21] - in.motion.times[19];
+  const Eigen::Vector3d central = (edited.motion.position(21, 4) - edited.motion.position(19, 4)) / dt;
+  CHECK((Eigen::Map<const Eigen::Vector3d>(edited.motion.velocities.data() + edited.motion.index(20, 4)) - central).norm() < 1e-12);
+
+  // --clip-only writes the clip: its frames, its agents, their formation edges renumbered.
+  REQUIRE(run("-q --json edit " + (dir / "in.h5").string() + " --job " + job.string() + " -o " + (dir / "clip.h5").string() +
+                  " --clip-only",
+              &out) == 0);
+  const CrowdFile clip = read_crowd_file(dir / "clip.h5");
+  CHECK(clip.motion.frame_count() == 26);
+  CHECK(clip.motion.agent_count() == 19);
+  CHECK(clip.motion.times.front() == in.motion.times[10]);
+  CHECK(clip.formation_edges == std::vector<std::array<std::int32_t, 2>>{{0, 1}, {7, 12}});
+  CHECK(clip.motion.velocities.size() == clip.motion.positions.size());
+  for (std::size_t f = 0; f < 26; ++f) {
+    for (std::size_t a = 0; a < 19; ++a) CHECK(clip.motion.position(f, a) == edited.motion.position(10 + f, a));
+  }
 }
 
 TEST_CASE("edit --print-config prints the effective job and writes nothing") {

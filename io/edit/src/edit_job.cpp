@@ -233,6 +233,7 @@ EditJob read_edit_job(const ConfigNode& job) {
   read_edge_edits(job, parsed.options);
   read_handles(job, parsed.request);
   read_constraints(job, parsed.request);
+  if (auto v = job.find("clip_only")) parsed.clip_only = v->as_bool();
   job.finish();
   try {
     edit::validate(parsed.options);
@@ -247,6 +248,7 @@ YAML::Node effective_edit_job(const EditJob& job) {
   edit::Options options = job.options;
   OptionWriter writer(out);
   bind(writer, options);
+  out["clip_only"] = job.clip_only;
   const auto& o = job.options;
   out["clip"]["first_frame"] = static_cast<std::uint64_t>(o.clip.first_frame);
   if (o.clip.last_frame == open_end) {
@@ -322,7 +324,7 @@ YAML::Node effective_edit_job(const EditJob& job) {
   return out;
 }
 
-void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result) {
+void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result, bool clip_only, double seam_jump_m) {
   const h5::Group g = throng_parameters.create_group("edit");
   std::vector<std::int64_t> frames(result.sample_frames.begin(), result.sample_frames.end());
   g.write("sample_frames", frames, {frames.size()});
@@ -330,6 +332,9 @@ void write_edit_data(const h5::Group& throng_parameters, const edit::Result& res
   g.set_attribute("first_frame", static_cast<std::int64_t>(result.first_frame));
   g.set_attribute("last_frame", static_cast<std::int64_t>(result.last_frame));
   g.set_attribute("factorization", result.report.factorization);
+  g.set_attribute("clip_only", static_cast<std::int64_t>(clip_only ? 1 : 0));
+  g.set_attribute("seam_jump_m", seam_jump_m);
+  g.set_attribute("max_output_residual_m", result.report.max_output_residual);
   if (result.report.parts > 0) {  // a local edit: how much of the graph it solved
     g.set_attribute("local_parts", static_cast<std::int64_t>(result.report.parts));
     g.set_attribute("region_parts", static_cast<std::int64_t>(result.report.region_parts));

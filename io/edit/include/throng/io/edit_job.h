@@ -5,6 +5,8 @@
 // pins, drags and constraints a negative frame counts back from the clip's last frame, −1 being the last —
 // lengths in metres, angles in radians, velocities in m/s):
 //
+//   clip_only: false                  # false: the whole input crowd with the clip edited (other agents and frames
+//                                     # as they are); true: only the clip (its frames, the agents it edited)
 //   clip:
 //     first_frame: 0
 //     last_frame: end                 # a frame index, or end (the input's last frame)
@@ -63,6 +65,7 @@ namespace throng {
 struct EditJob {
   edit::Options options;
   edit::Request request;
+  bool clip_only = false;  ///< write only the clip instead of the whole crowd with the clip put back (edit/output.h)
 };
 
 /// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
@@ -73,9 +76,12 @@ struct EditJob {
 
 /// Writes the method data under /parameters/throng/edit:
 ///   sample_frames   int64[S]   the input frames the graph sampled (the clip's frames are first..last)
-///   left_out        int64[L]   ids of agents absent from part of the clip (not edited, not in the output)
-///   attributes: first_frame, last_frame (input frames of the clip), factorization (the solver's method)
+///   left_out        int64[L]   ids of agents absent from part of the clip (not edited: copied unchanged into
+///                              the whole-crowd output, absent from a clip-only output)
+///   attributes: first_frame, last_frame (input frames of the clip), factorization (the solver's method),
+///               clip_only (1 when the file holds only the clip), seam_jump_m (edit/output.h: seam_jump),
+///               max_output_residual_m (the request's largest violation on the written frames)
 ///               and for a local edit local_parts, region_parts, region_vertices (how much of the graph it solved)
-void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result);
+void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result, bool clip_only, double seam_jump_m);
 
 }  // namespace throng
