@@ -406,6 +406,33 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::current() const noe
 const std::vector<int>& LocalEditor::region() const noexcept { return state_->region; }
 const std::vector<int>& LocalEditor::region_parts() const noexcept { return state_->region_parts; }
 
+BoundaryStep LocalEditor::boundary_step() const {
+  const State& s = *state_;
+  const Clip& clip = s.clip();
+  const Positions& input = clip.positions;
+  const std::size_t agents = clip.agent_count();
+  std::vector<char> inside(static_cast<std::size_t>(input.rows()), 0);
+  for (int v : s.region) inside[static_cast<std::size_t>(v)] = 1;
+  BoundaryStep b;
+  for (std::size_t i = 0; i + 1 < clip.frames.size(); ++i) {
+    const double gap = static_cast<double>(clip.frames[i + 1] - clip.frames[i]);
+    for (std::size_t j = 0; j < agents; ++j) {
+      const auto v0 = static_cast<Index>(clip.vertex(i, j)), v1 = static_cast<Index>(clip.vertex(i + 1, j));
+      const double before = (input.row(v1) - input.row(v0)).norm() / gap;
+      b.input_max_m = std::max(b.input_max_m, before);
+      if (inside[static_cast<std::size_t>(v0)] == inside[static_cast<std::size_t>(v1)]) continue;
+      const double after = (s.result.row(v1) - s.result.row(v0)).norm() / gap;
+      if (after > b.edited_m) {
+        b.edited_m = after;
+        b.input_m = before;
+        b.agent = clip.ids[j];
+        b.frame = clip.frames[i];
+      }
+    }
+  }
+  return b;
+}
+
 CrowdMotion LocalEditor::resample(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& samples) const {
   if (samples.rows() != static_cast<Index>(state_->graph.vertex_count())) {
     throw std::invalid_argument("LocalEditor::resample: " + std::to_string(samples.rows()) + " rows for " +
