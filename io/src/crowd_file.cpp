@@ -2,7 +2,12 @@
 #include <throng/io/atomic_output.h>
 #include <throng/io/crowd_file.h>
 
+#include <Eigen/Geometry>
+
+#include <array>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <variant>
 
 namespace throng {
@@ -165,6 +170,141 @@ void write_time_element(const h5::Group& trajectory, const std::string& name, co
   element.write("value", values, shape, h5::Layout{true, 0});
 }
 
+// The H5MD box: `boundary` per spatial axis (x, y, z) is "periodic" where the scene's region wraps (its x and y
+// flags; z never: crowds are planar), else "none". With a periodic axis: `edges`, a time-dependent element
+// sharing position's step and time, value float64[T][3][3] = diag(region width, region height, 0) in every frame
+// (MDAnalysis reads box/edges/value[frame] as the three box vectors; a zero z side makes it report no box rather
+// than an invented one), and `offset` float64[3], the region's lower corner (z 0). Written after position.
+void write_box(const h5::Group& trajectory, const Scene& scene, std::uint64_t T) {
+  const h5::Group box = trajectory.create_group("box");
+  box.set_attribute("dimension", std::int64_t{3});
+  const bool px = scene.region && scene.region->periodic[0], py = scene.region && scene.region->periodic[1];
+  box.set_attribute("boundary", std::vector<std::string>{px ? "periodic" : "none", py ? "periodic" : "none", "none"});
+  if (!px && !py) return;
+  const Region& r = *scene.region;
+  const h5::Group edges = box.create_group("edges");
+  edges.link("step", "/particles/trajectory/position/step");
+  edges.link("time", "/particles/trajectory/position/time");
+  const std::array<double, 9> frame{r.max.x() - r.min.x(), 0, 0, 0, r.max.y() - r.min.y(), 0, 0, 0, 0};
+  std::vector<double> value;
+  value.reserve(9 * T);
+  for (std::uint64_t t = 0; t < T; ++t) value.insert(value.end(), frame.begin(), frame.end());
+  edges.write("value", value, {T, 3, 3});
+  box.write("offset", std::vector<double>{r.min.x(), r.min.y(), 0.0}, {3});
+}
+
+// What a file's box says about periodic axes: which of x and y wrap, and the box's lower corner and sides.
+struct PeriodicBox {
+  std::array<bool, 2> periodic{false, false};
+  Eigen::Vector2d offset{0, 0};
+  Eigen::Vector2d edges{0, 0};  // x and y sides (0 when a non-periodic side is not given)
+};
+
+// Reads the H5MD box when it marks x or y periodic (nullopt otherwise; a periodic z is ignored: crowds are
+// planar). edges may be a dataset ([3] sides or a [3][3] matrix) or a time-dependent element (value [T][3] or
+// [T][3][3]); it must be rectangular in x and y and the same in every frame. offset (optional, [3]) defaults to 0.
+// InputError naming the attribute or dataset otherwise.
+std::optional<PeriodicBox> read_periodic_box(const h5::Group& trajectory) {
+  if (!trajectory.has_group("box")) return std::nullopt;
+  const h5::Group box = trajectory.open_group("box");
+  const std::vector<std::string> boundary = box.string_array_attribute("boundary");
+  if (boundary.empty()) return std::nullopt;
+  if (boundary.size() != 3) {
+    throw InputError(box.where() + ": attribute boundary has " + std::to_string(boundary.size()) +
+                     " entries, expected 3 (one per axis)");
+  }
+  PeriodicBox out;
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (boundary[a] != "none" && boundary[a] != "periodic") {
+      throw InputError(box.where() + ": attribute boundary[" + std::to_string(a) + "] is '" + boundary[a] +
+                       "', expected \"none\" or \"periodic\"");
+    }
+    if (a < 2) out.periodic[a] = boundary[a] == "periodic";
+  }
+  if (!out.periodic[0] && !out.periodic[1]) return std::nullopt;
+
+  // A row of sides per frame: [3] or [3][3] (a dataset), [T][3] or [T][3][3] (an element's value).
+  const bool element = box.has_group("edges");
+  if (!element && !box.has("edges")) {
+    throw InputError(box.where("edges") + ": missing dataset; H5MD requires edges when an axis is periodic");
+  }
+  const std::string name = element ? "edges/value" : "edges";
+  const auto edges = box.read_doubles(name);
+  const std::size_t lead = element ? 1 : 0;  // the frame axis
+  const auto& shape = edges.shape;
+  const bool vector = shape.size() == lead + 1 && shape[lead] == 3;
+  const bool matrix = shape.size() == lead + 2 && shape[lead] == 3 && shape[lead + 1] == 3;
+  if (!vector && !matrix) {
+    throw InputError(box.where(name) + ": expected " + (element ? "[frames][3] or [frames][3][3]" : "[3] or [3][3]") +
+                     " (box sides or box vectors)");
+  }
+  const std::size_t per_frame = vector ? 3 : 9;
+  if (edges.values.size() < per_frame) throw InputError(box.where(name) + ": holds no frame");
+  for (std::size_t i = per_frame; i < edges.values.size(); ++i) {
+    if (edges.values[i] != edges.values[i % per_frame]) {
+      throw InputError(box.where(name) + ": the box changes between frames (not supported: a crowd's region is fixed)");
+    }
+  }
+  const double* e = edges.values.data();
+  if (matrix && (e[1] != 0 || e[2] != 0 || e[3] != 0 || e[5] != 0)) {
+    throw InputError(box.where(name) + ": a triclinic box (x and y box vectors not along the axes) is not supported");
+  }
+  out.edges = matrix ? Eigen::Vector2d(e[0], e[4]) : Eigen::Vector2d(e[0], e[1]);
+  for (int a = 0; a < 2; ++a) {
+    if (out.periodic[static_cast<std::size_t>(a)] && !(std::isfinite(out.edges[a]) && out.edges[a] > 0)) {
+      throw InputError(box.where(name) + ": periodic axis " + std::string(1, "xy"[a]) + " has side " +
+                       std::to_string(out.edges[a]) + ", expected a finite length > 0");
+    }
+  }
+  if (box.has("offset")) {
+    const auto offset = box.read_doubles("offset", 1);
+    if (offset.values.size() != 3 || !std::isfinite(offset.values[0]) || !std::isfinite(offset.values[1])) {
+      throw InputError(box.where("offset") + ": expected 3 finite numbers (the box's lower corner)");
+    }
+    out.offset = {offset.values[0], offset.values[1]};
+  }
+  return out;
+}
+
+// The scene's region from the box (files whose region is not stored under /parameters/throng: other programs'),
+// or a check that both agree. Non-periodic sides the box does not give span the agents' positions; times span
+// the frames.
+void apply_periodic_box(const PeriodicBox& box, const h5::Group& trajectory, const CrowdMotion& m, Scene& scene) {
+  if (scene.region) {
+    const Region& r = *scene.region;
+    for (std::size_t a = 0; a < 2; ++a) {
+      const auto i = static_cast<Eigen::Index>(a);
+      const bool agrees = r.periodic[a] == box.periodic[a] &&
+                          (!box.periodic[a] || (r.min[i] == box.offset[i] && r.max[i] - r.min[i] == box.edges[i]));
+      if (!agrees) {
+        throw InputError(trajectory.where("box") + ": axis " + std::string(1, "xy"[a]) +
+                         " disagrees with /parameters/throng/scene/region (periodic flag, lower corner or side)");
+      }
+    }
+    return;
+  }
+  Region r;
+  Eigen::AlignedBox2d extent;
+  for (std::size_t t = 0; t < m.frame_count(); ++t) {
+    for (std::size_t n = 0; n < m.agent_count(); ++n) {
+      if (m.present(t, n)) extent.extend(Eigen::Vector2d(m.position(t, n).head<2>()));
+    }
+  }
+  for (Eigen::Index a = 0; a < 2; ++a) {
+    if (box.periodic[static_cast<std::size_t>(a)] || box.edges[a] > 0 || extent.isEmpty()) {
+      r.min[a] = box.offset[a];
+      r.max[a] = box.offset[a] + (box.edges[a] > 0 ? box.edges[a] : 1.0);
+    } else {
+      r.min[a] = extent.min()[a];
+      r.max[a] = extent.max()[a] > extent.min()[a] ? extent.max()[a] : extent.min()[a] + 1.0;
+    }
+  }
+  r.t0 = m.frame_count() ? m.times.front() : 0.0;
+  r.t1 = m.frame_count() > 1 ? m.times.back() : r.t0 + 1.0;
+  r.periodic = {box.periodic[0], box.periodic[1], false};
+  scene.region = r;
+}
+
 }  // namespace
 
 void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra) {
@@ -187,14 +327,11 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       write_h5md_header(root, file.provenance.program_version);
 
       const h5::Group trajectory = root.create_group("particles").create_group("trajectory");
-      const h5::Group box = trajectory.create_group("box");
-      box.set_attribute("dimension", std::int64_t{3});
-      box.set_attribute("boundary", std::vector<std::string>{"none", "none", "none"});
-
       write_time_element(trajectory, "position", m.positions, T, N, 3, true);
       const h5::Group position = trajectory.open_group("position");
       position.write("time", m.times, {T});
       position.set_attribute_on("time", "unit", "s");
+      write_box(trajectory, file.scene, T);
       if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false);
 
       std::vector<std::int64_t> per_frame_id(T * N);
@@ -375,6 +512,10 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
     p.inputs = parameters.string_array_attribute("inputs");
     p.credits = parameters.string_array_attribute("credits");
     out.scene = read_scene(parameters);
+  }
+  if (const auto box = read_periodic_box(trajectory)) {
+    apply_periodic_box(*box, trajectory, m, out.scene);
+    out.scene.validate(trajectory.where("box"));
   }
   m.validate(path.filename().string());
   return out;

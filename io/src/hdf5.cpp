@@ -210,6 +210,12 @@ bool Group::has(const std::string& name) const {
   return H5Oexists_by_name(id(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
+bool Group::has_group(const std::string& name) const {
+  if (!has(name)) return false;
+  const Handle g(H5Gopen2(id(), name.c_str(), H5P_DEFAULT));  // fails (silently) on a dataset
+  return g.valid();
+}
+
 Group Group::create_group(const std::string& name) const {
   Handle props = untimed_group_properties();
   Handle g = checked(H5Gcreate2(id(), name.c_str(), H5P_DEFAULT, props.id(), H5P_DEFAULT), "cannot create group " + where(name));

@@ -87,3 +87,40 @@ TEST_CASE("writing never leaves a partial file or touches an existing target on 
   for (const auto& e : std::filesystem::directory_iterator(dir)) leftovers += e.path().filename().string().find(".tmp-") != std::string::npos;
   CHECK(leftovers == 0);
 }
+
+TEST_CASE("a periodic region becomes the H5MD box: periodic axes, edges and offset, and reads back") {
+  const auto dir = test::scratch_dir("io_periodic_box");
+  CrowdFile f = test::rich_crowd();  // region [-2, 6] × [-2, 6], periodic in x (and in time), not in y
+  write_crowd_file(dir / "x.h5", f);
+  {
+    const h5::File file = h5::File::open(dir / "x.h5");
+    const h5::Group box = file.root().open_group("particles/trajectory/box");
+    CHECK(box.string_array_attribute("boundary") == std::vector<std::string>{"periodic", "none", "none"});
+    const auto edges = box.read_doubles("edges/value", 3);
+    REQUIRE(edges.shape == std::vector<std::uint64_t>{f.motion.frame_count(), 3, 3});
+    for (std::size_t t = 0; t < f.motion.frame_count(); ++t) {
+      const std::vector<double> frame(edges.values.begin() + 9 * t, edges.values.begin() + 9 * (t + 1));
+      CHECK(frame == std::vector<double>{8, 0, 0, 0, 8, 0, 0, 0, 0});
+    }
+    CHECK(box.read_doubles("offset", 1).values == std::vector<double>{-2, -2, 0});
+    CHECK(box.read_doubles("edges/time", 1).values == f.motion.times);  // shares position's time
+  }
+  CHECK(test::same_crowd(f, read_crowd_file(dir / "x.h5")));
+
+  // Both axes periodic; and no region at all gives a box with no periodic axis and no edges.
+  f.scene.region->periodic = {true, true, false};
+  write_crowd_file(dir / "xy.h5", f);
+  {
+    const h5::File xy = h5::File::open(dir / "xy.h5");
+    CHECK(xy.root().open_group("particles/trajectory/box").string_array_attribute("boundary") ==
+          std::vector<std::string>{"periodic", "periodic", "none"});
+  }
+  CHECK(test::same_crowd(f, read_crowd_file(dir / "xy.h5")));
+  f.scene.region.reset();
+  write_crowd_file(dir / "none.h5", f);
+  const h5::File none_file = h5::File::open(dir / "none.h5");
+  const h5::Group none = none_file.root().open_group("particles/trajectory/box");
+  CHECK(none.string_array_attribute("boundary") == std::vector<std::string>{"none", "none", "none"});
+  CHECK_FALSE(none.has("edges"));
+  CHECK_FALSE(read_crowd_file(dir / "none.h5").scene.region.has_value());
+}

@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 #include "check_throws.h"
 
+#include <array>
 #include <fstream>
 #include <limits>
 
@@ -20,7 +21,9 @@ namespace {
 enum class Defect {
   none, missing_position, rank_two, last_axis_two, time_length, nan_present, times_decrease, version_two, id_changes,
   // Without an id/value dataset (presence from positions alone):
-  no_ids_absent, no_ids_infinite, no_ids_partly_nan
+  no_ids_absent, no_ids_infinite, no_ids_partly_nan,
+  // The H5MD box (as another program would write it):
+  box_periodic, box_without_edges, box_bad_boundary, box_triclinic, box_disagrees
 };
 
 // A minimal H5MD crowd file (3 frames, 2 agents) written by hand, with one defect.
@@ -48,7 +51,24 @@ void write_by_hand(const std::filesystem::path& path, Defect d) {
     if (d == Defect::id_changes) ids[4] = 9;
     const bool without_ids = d == Defect::no_ids_absent || d == Defect::no_ids_infinite || d == Defect::no_ids_partly_nan;
     if (!without_ids) traj.create_group("id").write("value", ids, {3, 2});
+    if (d >= Defect::box_periodic) {
+      const h5::Group box = traj.create_group("box");
+      box.set_attribute("dimension", std::int64_t{3});
+      box.set_attribute("boundary", std::vector<std::string>{d == Defect::box_bad_boundary ? "wrapped" : "periodic",
+                                                             "none", "none"});
+      if (d != Defect::box_without_edges) {
+        // A time-independent box: sides [3], or box vectors [3][3] (sheared in the triclinic case).
+        if (d == Defect::box_triclinic) box.write("edges", std::vector<double>{4, 0, 0, 1, 3, 0, 0, 0, 1}, {3, 3});
+        else box.write("edges", std::vector<double>{4, 3, 1}, {3});
+      }
+      box.write("offset", std::vector<double>{-1, -0.5, 0}, {3});
+    }
     const h5::Group params = root.create_group("parameters").create_group("throng");
+    if (d == Defect::box_disagrees) {  // a stored region 5 m wide where the box says 4
+      const h5::Group scene = params.create_group("scene");
+      scene.write("region", std::vector<double>{-1, -0.5, 4, 2.5, 0, 2}, {6});
+      scene.write("region_periodic", std::vector<std::int32_t>{1, 0, 0}, {3});
+    }
     params.set_attribute("format_version", std::int64_t{d == Defect::version_two ? 2 : 1});
     const h5::Group agents = params.create_group("agents");
     agents.write("id", std::vector<std::int64_t>{5, 6}, {2});
@@ -138,4 +158,23 @@ TEST_CASE("unknown format version: InputError naming both versions") {
 TEST_CASE("an id that changes within a column: InputError") {
   CHECK_THROWS_AS_WITH(read_crowd_file(case_file("ids", Defect::id_changes)), InputError,
                        Catch::Matchers::Contains("column 0 holds id 9 at frame 2"));
+}
+
+TEST_CASE("a periodic H5MD box from another program becomes the region, and a bad box is an InputError naming it") {
+  const CrowdFile f = read_crowd_file(case_file("box_periodic", Defect::box_periodic));
+  REQUIRE(f.scene.region.has_value());
+  const Region& r = *f.scene.region;
+  CHECK(r.periodic == std::array<bool, 3>{true, false, false});
+  CHECK(r.min == Eigen::Vector2d(-1, -0.5));
+  CHECK(r.max == Eigen::Vector2d(3, 2.5));  // offset + sides
+  CHECK(r.t0 == 0);
+  CHECK(r.t1 == 2);
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("box_no_edges", Defect::box_without_edges)), InputError,
+                       Catch::Matchers::Contains("/particles/trajectory/box/edges: missing dataset"));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("box_boundary", Defect::box_bad_boundary)), InputError,
+                       Catch::Matchers::Contains("box: attribute boundary[0] is 'wrapped'"));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("box_triclinic", Defect::box_triclinic)), InputError,
+                       Catch::Matchers::Contains("box/edges: a triclinic box"));
+  CHECK_THROWS_AS_WITH(read_crowd_file(case_file("box_disagrees", Defect::box_disagrees)), InputError,
+                       Catch::Matchers::Contains("box: axis x disagrees with /parameters/throng/scene/region"));
 }

@@ -78,3 +78,28 @@ print('ok')
 )");
   CHECK_THAT(out, Catch::Matchers::Contains("ok"));
 }
+
+TEST_CASE("MDAnalysis and h5py read a file whose region is periodic (box edges and boundary)") {
+  const auto dir = test::scratch_dir("io_other_periodic");
+  CrowdFile f = full_crowd();
+  f.scene.region = Region{{-1, -2}, {9, 6}, 0.0, 1.2, {true, true, false}};
+  write_crowd_file(dir / "crowd.h5", f);
+  const std::string out = python_check(dir, R"(
+import sys, warnings
+warnings.filterwarnings('ignore')
+import h5py, numpy as np
+from MDAnalysis.coordinates.H5MD import H5MDReader
+path = sys.argv[0].replace('check.py', 'crowd.h5')
+box = h5py.File(path, 'r')['particles/trajectory/box']
+assert [b.decode() if isinstance(b, bytes) else b for b in box.attrs['boundary']] == ['periodic', 'periodic', 'none']
+assert box['edges/value'].shape == (4, 3, 3)
+assert np.array_equal(box['edges/value'][2], np.diag([10.0, 8.0, 0.0]))
+assert list(box['offset'][:]) == [-1.0, -2.0, 0.0]
+r = H5MDReader(path, convert_units=False)
+assert r.n_frames == 4 and r.n_atoms == 3
+for i, ts in enumerate(r):
+    assert np.allclose(ts.positions[2], [2 + 0.25 * i, 4.0 - i, 0.0], atol=1e-5), ts.positions[2]
+print('ok')
+)");
+  CHECK_THAT(out, Catch::Matchers::Contains("ok"));
+}

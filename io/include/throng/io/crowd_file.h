@@ -3,7 +3,10 @@
 //
 //   /h5md                              version = [1, 1]; author/name; creator/name, creator/version
 //   /h5md/modules/units                version = [1, 0], system = "SI"
-//   /particles/trajectory/box          dimension = 3, boundary = ["none"|"periodic" ×3]; edges [3] when periodic
+//   /particles/trajectory/box          dimension = 3, boundary = ["none"|"periodic" ×3]: x and y "periodic" where
+//                                      the scene's region wraps, z "none"; when one is periodic, edges (element:
+//                                      step/time hard links, value float64[T][3][3] = diag(width, height, 0), the
+//                                      form MDAnalysis reads) and offset float64[3] (the region's lower corner)
 //   /particles/trajectory/position     step int64[T], time float64[T] (unit "s"), value float64[T][N][3]
 //                                      (metres; no unit attribute: MDAnalysis rejects "m"); NaN where absent
 //   /particles/trajectory/velocity     optional; step/time hard links; value float64[T][N][3]
@@ -61,8 +64,10 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 
 /// Reads and validates a crowd file. Throws IoError (missing or unreadable file) or InputError naming the dataset
 /// and the problem: not HDF5, truncated, missing dataset, wrong rank or shape, NaN for a present agent, times not
-/// increasing, an id that changes within a column, unknown format version. H5MD files from other programs (no
-/// /parameters/throng) are accepted: ids from id/value (or 0..N-1), radius 0.25 m, no scene.
+/// increasing, an id that changes within a column, unknown format version, a periodic box without edges or
+/// that disagrees with the stored region. H5MD files from other programs (no /parameters/throng) are accepted:
+/// ids from id/value (or 0..N-1), radius 0.25 m, no obstacles, and a region from the box when it is periodic in
+/// x or y.
 [[nodiscard]] CrowdFile read_crowd_file(const std::filesystem::path& path);
 
 /// Opens a crowd file's /parameters/throng group for method data, with `h5::File` kept alive by the caller.

@@ -59,6 +59,8 @@ class Group {
   [[nodiscard]] std::string where(const std::string& name = {}) const;
 
   [[nodiscard]] bool has(const std::string& name) const;
+  /// True when `name` exists and is a group (not a dataset).
+  [[nodiscard]] bool has_group(const std::string& name) const;
   [[nodiscard]] Group create_group(const std::string& name) const;
   /// Opens a subgroup; throws InputError "missing group" when absent.
   [[nodiscard]] Group open_group(const std::string& name) const;
