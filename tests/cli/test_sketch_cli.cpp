@@ -69,6 +69,66 @@ TEST_CASE("the paper experiment config makes a crowd file that reads back with i
   CHECK(sketch.open_group("agents").read_doubles("weights", 2).shape == std::vector<std::uint64_t>{50, 3});
 }
 
+TEST_CASE("a real sketch output opens in h5py and MDAnalysis, and keeps auxiliary time stamps") {
+  // Auxiliary lines given with times keep them in the file ([x, y, t]); lines without stay [x, y]. The crowd is
+  // read by readers nobody here wrote: frame and agent counts, positions (against our reader), times.
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py and python3-mdanalysis, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_readers");
+  write_file(dir / "job.yaml",
+             "strokes:\n"
+             "  main: [[0, 0, 0], [10, 0, 8], [20, 0, 16]]\n"
+             "  auxiliary:\n"
+             "    - [[0, 3, 0.5], [10, 3.5, 7], [20, 3, 15.25]]\n"
+             "    - [[0, -3], [20, -3]]\n"
+             "agents: {count: 8}\n"
+             "duration: 6\n"
+             "output_rate: 5\n");
+  const auto out = dir / "crowd.h5";
+  REQUIRE(run("--quiet sketch " + (dir / "job.yaml").string() + " -o " + out.string()) == 0);
+  {
+    const h5::File file = h5::File::open(out);
+    const h5::Group strokes = open_throng_parameters(file).open_group("sketch").open_group("strokes");
+    const auto timed = strokes.read_doubles("auxiliary_0", 2);
+    CHECK(timed.shape == std::vector<std::uint64_t>{3, 3});
+    CHECK(timed.values == std::vector<double>{0, 3, 0.5, 10, 3.5, 7, 20, 3, 15.25});
+    CHECK(strokes.read_doubles("auxiliary_1", 2).shape == std::vector<std::uint64_t>{2, 2});
+  }
+  const CrowdFile ours = read_crowd_file(out);
+  REQUIRE(ours.motion.frame_count() == 31);
+  // Our reader's positions of agent 3 at frames 0, 10 and 30, for the other readers to match.
+  std::string expected;
+  for (std::size_t f : {0, 10, 30}) {
+    const Eigen::Vector3d p = ours.motion.position(f, 3);
+    expected += "(" + std::to_string(f) + ", [" + std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", 0]), ";
+  }
+  std::ofstream(dir / "check.py") << "import sys, warnings\nwarnings.filterwarnings('ignore')\n"
+                                     "import h5py, numpy as np\n"
+                                     "from MDAnalysis.coordinates.H5MD import H5MDReader\n"
+                                     "path = sys.argv[1]\n"
+                                     "expected = [" + expected + "]\n"
+                                     R"(
+f = h5py.File(path, 'r')
+p = f['particles/trajectory/position/value']
+assert p.shape == (31, 8, 3), p.shape
+assert np.allclose(f['particles/trajectory/position/time'][:], np.arange(31) / 5.0)
+assert (f['particles/trajectory/id/value'][:] == np.arange(8)).all()
+for frame, position in expected:
+    assert np.allclose(p[frame, 3], position, atol=1e-5), (frame, p[frame, 3], position)
+r = H5MDReader(path, convert_units=False)
+assert r.n_frames == 31 and r.n_atoms == 8, (r.n_frames, r.n_atoms)
+for frame, position in expected:
+    ts = r[frame]
+    assert np.allclose(ts.positions[3], position, atol=1e-4), (frame, ts.positions[3], position)
+    assert abs(ts.time - frame / 5.0) < 1e-9, ts.time
+print('ok')
+)";
+  std::string output;
+  CHECK(test::run_command(python + " " + (dir / "check.py").string() + " " + out.string(), &output) == 0);
+  INFO(output);
+  CHECK_THAT(output, Contains("ok"));
+}
+
 TEST_CASE("the sketch configs are the test scenes") {
   for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
                                     std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {

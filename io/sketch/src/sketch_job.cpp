@@ -222,8 +222,18 @@ void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
   }
   strokes.write("main", timed, {main.points.size(), 3});
   for (std::size_t i = 1; i < job.drawing.strokes.size(); ++i) {
-    const auto& points = job.drawing.strokes[i].points;
-    strokes.write("auxiliary_" + std::to_string(i - 1), flatten(points), {points.size(), 2});
+    // As given: [x, y, t] when the line was drawn with times (the method does not use them), else [x, y].
+    const Stroke& aux = job.drawing.strokes[i];
+    const std::string name = "auxiliary_" + std::to_string(i - 1);
+    if (aux.times.empty()) {
+      strokes.write(name, flatten(aux.points), {aux.points.size(), 2});
+    } else {
+      std::vector<double> rows;
+      for (std::size_t k = 0; k < aux.points.size(); ++k) {
+        rows.insert(rows.end(), {aux.points[k].x(), aux.points[k].y(), aux.times[k]});
+      }
+      strokes.write(name, rows, {aux.points.size(), 3});
+    }
   }
 
   const sketch::Course& c = result.course;

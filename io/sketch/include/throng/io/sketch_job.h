@@ -58,7 +58,8 @@ struct SketchJob {
 [[nodiscard]] YAML::Node effective_sketch_job(const SketchJob& job);
 
 /// Writes the method data under /parameters/throng/sketch:
-///   strokes/main        float64[K][3]  x, y, t as given;  strokes/auxiliary_<i>  float64[K_i][2]
+///   strokes/main        float64[K][3]  x, y, t as given;  strokes/auxiliary_<i>  float64[K_i][3] (x, y, t)
+///                       when the line was given with times, else float64[K_i][2]
 ///   course/main         float64[K][2]  the main line as used (pauses merged, resampled)
 ///   course/speed, width, standard_distance, irregularity, correction_scale   float64[K]   (Eq. 5, 6, 7, 12, 13)
 ///   agents/start        float64[N][2];  agents/weights float64[N][#strokes] (Eq. 2–3);
