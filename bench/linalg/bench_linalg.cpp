@@ -16,6 +16,7 @@
 
 #include <complex>
 #include <cstdio>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -151,22 +152,41 @@ void BM_AddConstraints(benchmark::State& state) {
   }
 }
 
-// The petsc backend's preconditioners: args side, preconditioner (0 gamg, 1 hypre, 2 mumps Cholesky).
+// Resident memory of this process now (MB), from /proc/self/statm; 0 where that file is missing.
+double resident_megabytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (f == nullptr) return 0;
+  long pages = 0, resident = 0;
+  const int read = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return read == 2 ? static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1048576.0 : 0.0;
+}
+
+// The petsc backend's preconditioners: args side, preconditioner (0 gamg, 1 hypre, 2 mumps Cholesky, 3 additive
+// Schwarz with ICC blocks on one METIS part per rank, 4 the same on 4 parts per rank). Run on 1 and 2 ranks
+// (mpiexec -np 2 bench_linalg --benchmark_filter=Petsc): counters per solve, memory as max and sum over ranks.
 void BM_PetscSetupAndSolve(benchmark::State& state) {
   const System s = editing_system(static_cast<int>(state.range(0)), 300);
   linalg::SolverOptions options;
   options.backend = "petsc";
-  const char* pcs[] = {"", "-pc_type hypre", "-pc_type cholesky -pc_factor_mat_solver_type mumps"};
+  const char* pcs[] = {"", "-pc_type hypre", "-pc_type cholesky -pc_factor_mat_solver_type mumps",
+                       "-pc_type asm -sub_pc_type icc", "-pc_type asm -sub_pc_type icc -parts_per_rank 4"};
   options.petsc_options = pcs[state.range(1)];
   options.petsc_prefix = "bench" + std::to_string(state.range(1)) + "_";
   try {
     for (auto _ : state) {
+      const double before = resident_megabytes();
       auto solver = solver_for(s, options, false);
       solver.precompute();
       benchmark::DoNotOptimize(solver.solve(s.b, s.pin_values, Eigen::MatrixXd(0, 1)).data());
+      const double grown = resident_megabytes() - before;
       state.counters["iterations"] = solver.report().last_solve.iterations;
       state.counters["setup_s"] = solver.report().factorize_seconds;
       state.counters["solve_s"] = solver.report().solve_seconds;
+      state.counters["ranks"] = mpi::size();
+      state.counters["rss_max_MB"] = mpi::max(resident_megabytes());
+      state.counters["rss_sum_MB"] = mpi::sum(resident_megabytes());
+      state.counters["grown_max_MB"] = mpi::max(grown);
       state.SetLabel(solver.report().factorization.method);
     }
   } catch (const Error& e) {
@@ -185,7 +205,9 @@ BENCHMARK(BM_Solve)
     ->ArgNames({"side", "samples", "complex", "blas"})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AddConstraints)->Args({16, 0})->Args({16, 1})->Args({128, 0})->Args({128, 1})
     ->ArgNames({"rows", "refactorise"})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_PetscSetupAndSolve)->Args({7, 0})->Args({7, 1})->Args({7, 2})->Args({17, 0})->Args({17, 1})->Args({17, 2})
+BENCHMARK(BM_PetscSetupAndSolve)
+    ->Args({7, 0})->Args({7, 1})->Args({7, 2})->Args({7, 3})->Args({7, 4})
+    ->Args({17, 0})->Args({17, 1})->Args({17, 2})->Args({17, 3})->Args({17, 4})
     ->ArgNames({"side", "pc"})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 int main(int argc, char** argv) {

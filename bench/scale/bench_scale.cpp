@@ -1,28 +1,41 @@
-// Editing at scale (issue 8): drag latency against crowd size for local and global edits, global precompute
-// time and memory per backend and rank count, and the machine's memory bandwidth to judge them against.
+// Editing at scale (issue 8): drag latency and memory against crowd size, frames, ranks and threads, for local
+// and global edits, strong and weak scaling, and the machine's memory bandwidth to judge them against.
 //
-// Scenes: the tests' marching grid (tests/graph/synthetic_crowd.h), 1,000 to 10,000 agents × 300 frames, every
-// frame sampled (300 samples). The request holds the first and the last frame of everyone and drags 20 agents
-// of the formation's front row over frames 140..160 (an interactive drag of a small group inside a large crowd).
+// Scenes: the tests' marching grid (tests/graph/synthetic_crowd.h), every frame sampled. The request holds the
+// first and the last frame of everyone and drags 20 agents of the formation's front row over the middle 21
+// frames (an interactive drag of a small group inside a large crowd). Cases, named study/series/key:x:
+//  * size/local_drag/halo:H/agents:N     LocalEditor, N agents × 300 frames, parts of ~5,000 vertices
+//                                        (local.parts = vertices / 5,000), local.halo = H: seconds per drag with
+//                                        the region's factorisations cached (counters: region vertices, region
+//                                        build seconds, memory, METIS seconds). Target: ≤ 0.1 s at 5,000 agents.
+//  * size/global_drag/B/agents:N         Editor on backend B (eigen, petsc): seconds per drag after precompute
+//                                        (precompute seconds, memory, factor entries, bytes a drag must read).
+//  * frames/local_drag/halo:1/frames:F,  1,000 agents × F frames.
+//    frames/global_drag/petsc/frames:F
+//  * strong/<local_drag|global_drag/petsc>/threads:T   fixed size (--scale_strong_agents × 300 frames) on T
+//                                        threads; run under mpiexec -np 1 and -np 2: x = workers = ranks × threads.
+//  * weak/global_drag/petsc/threads:T    --scale_weak_agents agents per worker (ranks × threads) × 300 frames.
+//  * stream_triad                        a[i] = b[i] + s·c[i] over 3 × 128 MB: the memory bandwidth.
+// Memory: heap in use held by the case (mallinfo2 difference) on each rank; memory_max_MB and memory_sum_MB over
+// the ranks. After the run every case with memory gets stream_sweeps: how many times the drag could have streamed
+// everything the solver holds at the measured bandwidth (seconds · GB/s / GB held); a direct solve needs 4 passes
+// over its factors (2 steps × forward and back), CG + GAMG about 2 passes per iteration; bandwidth_fraction,
+// for the direct backend, is the factor bytes a drag must read over the drag's seconds, as a fraction of triad.
 //
-//  * local_drag/halo:H/agents:N  LocalEditor (local.parts = vertices / 5,000, local.halo = H): seconds per drag
-//                             with the region's factorisations cached (counters: region vertices, region build
-//                             seconds, memory held, METIS seconds).
-//                             Target (issue 8): ≤ 0.1 s at 5,000 agents, whatever the crowd size.
-//  * global_drag/B/agents:N   Editor on backend B: seconds per drag after precompute (counters: precompute
-//                             seconds, memory held by the editor in MB, factor entries, bandwidth used by a drag).
-//  * global_drag/petsc_asm/agents:N   the petsc backend with additive Schwarz (ICC blocks) instead of GAMG.
-//  * stream_triad             a[i] = b[i] + s·c[i] over 3 × 128 MB: the memory bandwidth a drag is judged against.
-//
-// Results: besides the console, --scale_out=DIR (default bench-scale) gets scale.csv, scale.json and scale.svg
-// (time and memory against agents) from the median of the repetitions (or the single run).
-// Run:   bench_scale --benchmark_repetitions=3 --benchmark_report_aggregates_only=true --scale_out=out
-// Ranks: mpiexec -np 2 bench_scale --benchmark_filter=petsc ... (fixed iteration counts keep the collective
-// PETSc solves in step; rank 0 prints and writes).
+// Sizes are arguments (comma-separated lists), so a run stays as long as it needs to be:
+//   --scale_agents=1000,2000,5000,10000  --scale_frames=100,300,1000  --scale_threads=1,2  --scale_halos=0,1,2
+//   --scale_eigen_max=2000 (the direct global solve's largest crowd: its factors outgrow 23 GB beyond)
+//   --scale_strong_agents=2000  --scale_weak_agents=1000  --scale_out=DIR (default bench-scale)
+// plus Google Benchmark's own --benchmark_filter. Results: the console, and DIR/scale.csv, scale.json and one
+// scale-<study>.svg per study (rows of other runs already in DIR/scale.json are kept: runs under mpiexec -np 1
+// and -np 2 build one table). Commands: bench/scale/README.md.
+// Ranks: mpiexec -np 2 bench_scale --benchmark_filter='strong|weak' ... (fixed iteration counts keep the
+// collective PETSc solves in step; rank 0 prints and writes).
 #include "../../tests/graph/synthetic_crowd.h"
 #include "chart.h"
 
 #include <throng/core/errors.h>
+#include <throng/core/parallel.h>
 #include <throng/edit/edit.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/mpi.h>
@@ -35,9 +48,12 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 #include <malloc.h>
 
 namespace {
@@ -45,7 +61,26 @@ namespace {
 using namespace throng;
 using Clock = std::chrono::steady_clock;
 
-constexpr std::size_t frames = 300;
+// The sweep's sizes (from the --scale_* arguments).
+struct Sweep {
+  std::vector<int> agents{1000, 2000, 5000, 10000};
+  std::vector<int> frames{100, 300, 1000};
+  std::vector<int> threads{1, 2};
+  std::vector<int> halos{0, 1, 2};
+  int eigen_max = 2000;
+  int strong_agents = 2000;
+  int weak_agents = 1000;
+};
+
+std::vector<int> int_list(const char* text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(std::stoi(item));
+  }
+  return out;
+}
 
 // Heap memory in use, MB (glibc's mallinfo2: arena and mmapped blocks in use). A difference of two readings is
 // what the code between them holds, whatever earlier cases freed (a resident-set difference is not: freed pages
@@ -62,16 +97,16 @@ struct Scene {
   edit::Request request;
 };
 
-Scene scene(int agents, const std::string& backend) {
+Scene scene(int agents, int frames, const std::string& backend) {
   const int cols = agents <= 1000 ? 40 : agents <= 2000 ? 50 : 100;
-  const int rows = agents / cols;
-  Scene s{test::marching_grid(rows, cols, frames, 1.0, 1.2, 0.1, 0.1, 0.2), {}, {}};
+  const int rows = std::max(1, agents / cols);
+  Scene s{test::marching_grid(rows, cols, static_cast<std::size_t>(frames), 1.0, 1.2, 0.1, 0.1, 0.2), {}, {}};
   s.options.solver.backend = backend;
   edit::Drag head, tail, group;
   head.selection.last_frame = 0;
   tail.selection.first_frame = -1;
-  group.selection.first_frame = 140;
-  group.selection.last_frame = 160;
+  group.selection.first_frame = frames / 2 - 10;
+  group.selection.last_frame = frames / 2 + 10;
   for (int j = 0; j < 20; ++j) group.selection.agents.push_back(100 + cols / 2 - 10 + j);  // the front row's middle
   group.offset = Eigen::Vector2d(1.0, 0.5);
   s.request.drags = {head, tail, group};
@@ -81,9 +116,23 @@ Scene scene(int agents, const std::string& backend) {
 // A new offset per drag, as an interactive drag produces.
 void next_offset(Scene& s, double step) { s.request.drags[2].offset = Eigen::Vector2d(1.0 + 0.05 * step, 0.5 - 0.02 * step); }
 
-void local_drag(benchmark::State& state, int agents, int halo) {
-  Scene s = scene(agents, "eigen");
-  s.options.local.parts = std::max(1, agents * static_cast<int>(frames) / 5000);  // parts of ~5,000 vertices
+// The counters every case shares: size, threads, ranks, workers, memory on this rank and over the ranks.
+void common_counters(benchmark::State& state, int agents, int frames, int threads, double memory_mb) {
+  state.counters["agents"] = agents;
+  state.counters["frames"] = frames;
+  state.counters["threads"] = threads;
+  state.counters["ranks"] = mpi::size();
+  state.counters["workers"] = threads * mpi::size();
+  state.counters["memory_MB"] = memory_mb;
+  state.counters["memory_max_MB"] = mpi::max(memory_mb);
+  state.counters["memory_sum_MB"] = mpi::sum(memory_mb);
+}
+
+void local_drag(benchmark::State& state, int agents, int frames, int halo, int threads) {
+  const ThreadLimit limit(static_cast<std::size_t>(threads));
+  Scene s = scene(agents, frames, "eigen");
+  s.options.solver.blas_threads = threads;
+  s.options.local.parts = std::max(1, agents * frames / 5000);  // parts of ~5,000 vertices
   s.options.local.halo = halo;
   try {
     const double before = heap_mb();
@@ -97,13 +146,12 @@ void local_drag(benchmark::State& state, int agents, int halo) {
       benchmark::DoNotOptimize(editor.deform(s.request).data());
     }
     const edit::Report& r = editor.report();
-    state.counters["agents"] = agents;
+    common_counters(state, agents, frames, threads, heap_mb() - before);
     state.counters["parts"] = r.parts;
     state.counters["region_parts"] = r.region_parts;
     state.counters["region_vertices"] = static_cast<double>(r.region_vertices);
     state.counters["region_build_s"] = build;
     state.counters["partition_s"] = r.partition_seconds;
-    state.counters["memory_MB"] = heap_mb() - before;
     state.counters["regions_built"] = r.regions_built;
     state.SetLabel(r.factorization);
   } catch (const Error& e) {
@@ -111,8 +159,11 @@ void local_drag(benchmark::State& state, int agents, int halo) {
   }
 }
 
-void global_drag(benchmark::State& state, int agents, const std::string& backend, const std::string& petsc_options) {
-  Scene s = scene(agents, backend);
+void global_drag(benchmark::State& state, int agents, int frames, const std::string& backend, int threads,
+                 const std::string& petsc_options) {
+  const ThreadLimit limit(static_cast<std::size_t>(threads));
+  Scene s = scene(agents, frames, backend);
+  s.options.solver.blas_threads = threads;
   s.options.solver.petsc_options = petsc_options;
   try {
     const double before = heap_mb();
@@ -124,15 +175,13 @@ void global_drag(benchmark::State& state, int agents, const std::string& backend
       benchmark::DoNotOptimize(editor.deform(s.request).data());
     }
     const edit::Report& r = editor.report();
-    state.counters["agents"] = agents;
+    common_counters(state, agents, frames, threads, heap_mb() - before);
     state.counters["unknowns"] = static_cast<double>(r.unknowns);
     state.counters["precompute_s"] = r.precompute_seconds;
-    state.counters["memory_MB"] = heap_mb() - before;
     state.counters["factor_entries"] = r.factor_nonzeros;
-    // A drag is two triangular solve pairs (steps 1 and 2): each reads its factor twice, ≥ 12 bytes an entry
-    // (8 value + 4 index; complex factors hold 16-byte values, so this is a lower bound).
+    // A direct drag is two triangular solve pairs (steps 1 and 2): each reads its factor twice, ≥ 12 bytes an
+    // entry (8 value + 4 index; complex factors hold 16-byte values, so this is a lower bound). 0 for petsc.
     state.counters["drag_bytes_GB"] = 2.0 * r.factor_nonzeros * 12.0 / 1e9;
-    state.counters["ranks"] = mpi::size();
     state.SetLabel(r.factorization);
   } catch (const Error& e) {
     state.SkipWithError(e.what());
@@ -151,39 +200,62 @@ void stream_triad(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(3 * n * sizeof(double)) / 1e9, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-// Sizes per case: the global direct solve stops where its factor no longer fits this 23 GB machine comfortably.
-void register_benchmarks() {
+template <typename... Args>
+void add(const std::string& name, int iterations, Args&&... args) {
+  benchmark::RegisterBenchmark(name.c_str(), std::forward<Args>(args)...)
+      ->Iterations(iterations)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+}
+
+void register_benchmarks(const Sweep& sweep) {
   benchmark::RegisterBenchmark("stream_triad", stream_triad)->Iterations(10)->Unit(benchmark::kMillisecond)->UseRealTime();
-  for (int halo : {0, 1}) {
-    for (int agents : {1000, 2000, 5000, 10000}) {
-      const std::string n = std::to_string(agents);
-      benchmark::RegisterBenchmark(("local_drag/halo:" + std::to_string(halo) + "/agents:" + n).c_str(), local_drag, agents, halo)
-          ->Iterations(10)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+  const bool petsc = mpi::has_petsc();
+  // Size: agents × 300 frames.
+  for (int halo : sweep.halos) {
+    for (int agents : sweep.agents) {
+      add("size/local_drag/halo:" + std::to_string(halo) + "/agents:" + std::to_string(agents), 10, local_drag, agents, 300, halo, 1);
     }
   }
-  for (int agents : {1000, 2000}) {
-    benchmark::RegisterBenchmark(("global_drag/eigen/agents:" + std::to_string(agents)).c_str(), global_drag, agents, "eigen", "")
-        ->Iterations(3)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-  }
-  if (mpi::has_petsc()) {
-    for (int agents : {1000, 2000, 5000}) {
-      benchmark::RegisterBenchmark(("global_drag/petsc/agents:" + std::to_string(agents)).c_str(), global_drag, agents, "petsc", "")
-          ->Iterations(2)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+  for (int agents : sweep.agents) {
+    if (agents <= sweep.eigen_max) {
+      add("size/global_drag/eigen/agents:" + std::to_string(agents), 3, global_drag, agents, 300, "eigen", 1, "");
     }
-    // The preconditioner choice: additive Schwarz (one block per rank, incomplete Cholesky inside; the symmetric
-    // "basic" variant so CG applies) against the default algebraic multigrid.
-    for (int agents : {1000, 2000}) {
-      benchmark::RegisterBenchmark(("global_drag/petsc_asm/agents:" + std::to_string(agents)).c_str(), global_drag, agents,
-                                   "petsc", "-pc_type asm -pc_asm_type basic -sub_pc_type icc")
-          ->Iterations(2)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+    if (petsc) add("size/global_drag/petsc/agents:" + std::to_string(agents), 2, global_drag, agents, 300, "petsc", 1, "");
+  }
+  // Frames: 1,000 agents × F frames.
+  for (int frames : sweep.frames) {
+    add("frames/local_drag/halo:1/frames:" + std::to_string(frames), 10, local_drag, 1000, frames, 1, 1);
+    if (petsc) add("frames/global_drag/petsc/frames:" + std::to_string(frames), 2, global_drag, 1000, frames, "petsc", 1, "");
+  }
+  // Strong (fixed size) and weak (size per worker fixed) scaling over threads; ranks by mpiexec -np.
+  for (int threads : sweep.threads) {
+    const std::string t = std::to_string(threads);
+    add("strong/local_drag/halo:1/threads:" + t, 10, local_drag, sweep.strong_agents, 300, 1, threads);
+    if (petsc) {
+      add("strong/global_drag/petsc/threads:" + t, 2, global_drag, sweep.strong_agents, 300, "petsc", threads, "");
+      const int weak = sweep.weak_agents * threads * mpi::size();
+      add("weak/global_drag/petsc/threads:" + t, 2, global_drag, weak, 300, "petsc", threads, "");
+    }
+  }
+}
+
+// Bandwidth context for every case, from the stream_triad row of this run or an earlier one in the table.
+void add_bandwidth_notes(std::vector<scale::Row>& rows) {
+  double gbps = 0;
+  for (const auto& r : rows) {
+    if (r.name == "stream_triad") {
+      if (auto it = r.values.find("bandwidth_GBps"); it != r.values.end()) gbps = it->second;
+    }
+  }
+  if (gbps <= 0) return;
+  for (auto& r : rows) {
+    if (r.seconds <= 0) continue;
+    if (auto it = r.values.find("memory_max_MB"); it != r.values.end() && it->second > 0) {
+      r.values["stream_sweeps"] = r.seconds * gbps / (it->second / 1000.0);
+    }
+    if (auto it = r.values.find("drag_bytes_GB"); it != r.values.end() && it->second > 0) {
+      r.values["bandwidth_fraction"] = it->second / r.seconds / gbps;
     }
   }
 }
@@ -216,23 +288,37 @@ int main(int argc, char** argv) {
   const bool writer = !throng::mpi::launched_by_mpiexec() || throng::mpi::rank() == 0;
   if (!writer) (void)std::freopen("/dev/null", "w", stdout);
   std::string out_dir = "bench-scale";
+  Sweep sweep;
   std::vector<char*> args;
+  const std::vector<std::pair<std::string, std::function<void(const char*)>>> options{
+      {"--scale_out=", [&](const char* v) { out_dir = v; }},
+      {"--scale_agents=", [&](const char* v) { sweep.agents = int_list(v); }},
+      {"--scale_frames=", [&](const char* v) { sweep.frames = int_list(v); }},
+      {"--scale_threads=", [&](const char* v) { sweep.threads = int_list(v); }},
+      {"--scale_halos=", [&](const char* v) { sweep.halos = int_list(v); }},
+      {"--scale_eigen_max=", [&](const char* v) { sweep.eigen_max = std::stoi(v); }},
+      {"--scale_strong_agents=", [&](const char* v) { sweep.strong_agents = std::stoi(v); }},
+      {"--scale_weak_agents=", [&](const char* v) { sweep.weak_agents = std::stoi(v); }}};
   for (int k = 0; k < argc; ++k) {
-    if (std::strncmp(argv[k], "--scale_out=", 12) == 0) {
-      out_dir = argv[k] + 12;
-    } else {
-      args.push_back(argv[k]);
+    bool ours = false;
+    for (const auto& [key, apply] : options) {
+      if (std::strncmp(argv[k], key.c_str(), key.size()) == 0) {
+        apply(argv[k] + key.size());
+        ours = true;
+      }
     }
+    if (!ours) args.push_back(argv[k]);
   }
   int count = static_cast<int>(args.size());
-  register_benchmarks();
+  register_benchmarks(sweep);
   benchmark::Initialize(&count, args.data());
   Recorder recorder;
   benchmark::RunSpecifiedBenchmarks(&recorder);
   benchmark::Shutdown();
   if (writer && !recorder.rows.empty()) {
+    add_bandwidth_notes(recorder.rows);
     scale::write_results(out_dir, recorder.rows);
-    std::fprintf(stderr, "bench_scale: wrote %s/scale.csv, scale.json, scale.svg\n", out_dir.c_str());
+    std::fprintf(stderr, "bench_scale: wrote %s/scale.csv, scale.json, scale-<study>.svg\n", out_dir.c_str());
   }
   return 0;
 }

@@ -27,9 +27,25 @@ void write_atomically(const fs::path& path, const std::string& text) {
   fs::rename(tmp, path);
 }
 
+// Case names are "<study>/<series...>/<x key>:<x>" (size/local_drag/halo:1/agents:5000,
+// strong/global_drag/petsc/threads:2): the study picks the picture, the middle the line, the last key the x axis.
+std::string study_of(const std::string& name) {
+  const auto slash = name.find('/');
+  return slash == std::string::npos ? "other" : name.substr(0, slash);
+}
+
 std::string series_of(const std::string& name) {
-  const auto at = name.find("/agents:");
-  return at == std::string::npos ? name : name.substr(0, at);
+  const auto first = name.find('/');
+  const auto last = name.rfind('/');
+  if (first == std::string::npos || last == first) return name;
+  return name.substr(first + 1, last - first - 1);
+}
+
+std::string x_key_of(const std::string& name) {
+  const auto last = name.rfind('/');
+  const auto colon = name.rfind(':');
+  if (last == std::string::npos || colon == std::string::npos || colon < last) return "";
+  return name.substr(last + 1, colon - last - 1);
 }
 
 struct Point {
@@ -47,7 +63,8 @@ std::string number(double v) {
 
 // One log–log panel at (left, top) of size w × h.
 void panel(std::ostringstream& svg, double left, double top, double w, double h, const std::string& title,
-           const std::string& y_label, const Series& series, const std::vector<std::pair<std::string, double>>& lines) {
+           const std::string& x_label, const std::string& y_label, const Series& series,
+           const std::vector<std::pair<std::string, double>>& lines) {
   double x0 = 1e300, x1 = 0, y0 = 1e300, y1 = 0;
   for (const auto& [name, points] : series) {
     for (const Point& p : points) {
@@ -78,7 +95,7 @@ void panel(std::ostringstream& svg, double left, double top, double w, double h,
       svg << "<text x='" << x << "' y='" << top + h + 16 << "' text-anchor='middle' font-size='11'>" << number(v) << "</text>\n";
     }
   }
-  svg << "<text x='" << left + w / 2 << "' y='" << top + h + 36 << "' text-anchor='middle' font-size='12'>agents (× 300 frames)</text>\n";
+  svg << "<text x='" << left + w / 2 << "' y='" << top + h + 36 << "' text-anchor='middle' font-size='12'>" << x_label << "</text>\n";
   svg << "<text transform='translate(" << left - 48 << "," << top + h / 2 << ") rotate(-90)' text-anchor='middle' font-size='12'>"
       << y_label << "</text>\n";
   for (const auto& [name, y] : lines) {
@@ -132,7 +149,9 @@ void write_results(const fs::path& dir, std::vector<Row> rows) {
   });
   std::set<std::string> keys;
   for (const Row& r : rows) {
-    for (const auto& [key, value] : r.values) keys.insert(key);
+    for (const auto& [key, value] : r.values) {
+      if (key != "ranks" && key != "repetitions" && key != "seconds") keys.insert(key);  // columns of their own
+    }
   }
   // CSV: case, series, seconds, then every counter (empty where a case lacks it).
   std::ostringstream csv;
@@ -155,27 +174,50 @@ void write_results(const fs::path& dir, std::vector<Row> rows) {
   write_atomically(dir / "scale.csv", csv.str());
   write_atomically(dir / "scale.json", json.dump(2) + "\n");
 
-  Series time, memory;
+  // One picture per study: time and memory (max over ranks where measured) against its x.
+  std::map<std::string, std::pair<Series, Series>> studies;
+  std::map<std::string, std::string> x_labels;
   for (const Row& r : rows) {
-    const auto agents = r.values.find("agents");
-    if (agents == r.values.end()) continue;
-    const std::string s = series_of(r.name) + (r.ranks > 1 ? " (" + std::to_string(r.ranks) + " ranks)" : "");
-    time[s + " per drag"].push_back({agents->second, r.seconds});
+    const std::string study = study_of(r.name);
+    const std::string key = x_key_of(r.name);
+    // Strong and weak scaling: x is the worker count (ranks × threads); otherwise the case's own x.
+    const bool workers = study == "strong" || study == "weak";
+    const auto x_it = r.values.find(workers ? "workers" : key);
+    if (key.empty() || x_it == r.values.end()) continue;
+    x_labels[study] = workers ? (study == "weak" ? "workers (ranks × threads), size per worker fixed" : "workers (ranks × threads), fixed size")
+                              : key == "agents" ? "agents (× frames given in the case)" : key == "frames" ? "frames (agents fixed)" : key;
+    // Strong and weak: one line per thread count, its points the rank counts (x = ranks × threads).
+    std::string s = series_of(r.name);
+    if (workers) {
+      const auto t = r.values.find("threads");
+      const int threads = t == r.values.end() ? 1 : static_cast<int>(t->second);
+      s += " (" + std::to_string(threads) + (threads == 1 ? " thread" : " threads") + " per rank)";
+    } else if (r.ranks > 1) {
+      s += " (" + std::to_string(r.ranks) + " ranks)";
+    }
+    auto& [time, memory] = studies[study];
+    time[s + " per drag"].push_back({x_it->second, r.seconds});
     for (const char* extra : {"precompute_s", "region_build_s"}) {
       if (auto it = r.values.find(extra); it != r.values.end()) {
-        time[s + (std::string(extra) == "precompute_s" ? " precompute" : " region build")].push_back({agents->second, it->second});
+        time[s + (std::string(extra) == "precompute_s" ? " precompute" : " region build")].push_back({x_it->second, it->second});
       }
     }
-    if (auto it = r.values.find("memory_MB"); it != r.values.end()) memory[s].push_back({agents->second, std::max(it->second, 1.0)});
+    auto m = r.values.find("memory_max_MB");
+    if (m == r.values.end()) m = r.values.find("memory_MB");
+    if (m != r.values.end()) memory[s].push_back({x_it->second, std::max(m->second, 1.0)});
   }
-  std::ostringstream svg;
-  svg << std::setprecision(5);
-  svg << "<svg xmlns='http://www.w3.org/2000/svg' width='1200' height='520' font-family='sans-serif'>\n"
-      << "<rect width='1200' height='520' fill='white'/>\n";
-  panel(svg, 80, 50, 480, 400, "Time against crowd size (median)", "seconds", time, {{"0.1 s target", 0.1}});
-  panel(svg, 700, 50, 460, 400, "Memory held by the editor", "MB", memory, {});
-  svg << "</svg>\n";
-  write_atomically(dir / "scale.svg", svg.str());
+  for (const auto& [study, panels] : studies) {
+    std::ostringstream svg;
+    svg << std::setprecision(5);
+    svg << "<svg xmlns='http://www.w3.org/2000/svg' width='1200' height='520' font-family='sans-serif'>\n"
+        << "<rect width='1200' height='520' fill='white'/>\n";
+    const std::vector<std::pair<std::string, double>> target =
+        study == "size" ? std::vector<std::pair<std::string, double>>{{"0.1 s target", 0.1}} : std::vector<std::pair<std::string, double>>{};
+    panel(svg, 80, 50, 480, 400, "Time (" + study + ", median)", x_labels[study], "seconds", panels.first, target);
+    panel(svg, 700, 50, 460, 400, "Memory held (max over ranks)", x_labels[study], "MB", panels.second, {});
+    svg << "</svg>\n";
+    write_atomically(dir / ("scale-" + study + ".svg"), svg.str());
+  }
 }
 
 }  // namespace scale

@@ -18,6 +18,21 @@
 // one, supports only the preconditioned norm), block size and near null space from the caller's hint.
 // Additive Schwarz on the parts is one option away: -pc_type asm -sub_pc_type icc -parts_per_rank K (one
 // subdomain per METIS part, PCASM's overlap 1).
+//
+// GAMG or additive Schwarz, measured (2 cores shared with other work, so times are rough; iteration cap 2000):
+//   battlefield edit (configs/edit-battlefield.yaml, `throng edit --backend petsc`, both steps):
+//     sample_step 24 (70,800 unknowns)  gamg: 1 rank 0.52 s precompute + 0.74 s solve; 2 ranks 1.1 + 1.7 s
+//                                       asm+icc, 1 part per rank: DIVERGED_ITS on 1 and 2 ranks
+//                                       asm+icc, 4 parts per rank: DIVERGED_ITS on 1 rank; 2 ranks 1.0 + 0.6 s
+//     sample_step 4 (112,300 unknowns)  gamg: 1 rank 1.7 + 13.7 s; 2 ranks 2.8 + 22.9 s
+//                                       asm+icc (1 or 4 parts per rank): DIVERGED_ITS on 1 and 2 ranks
+//   bench_linalg BM_PetscSetupAndSolve (a synthetic editing system without the near-null-space hint, pinned at
+//   the first and last sample only): asm+icc converged 2-4× faster than gamg (226-444 against 385-488
+//   iterations, 7×7 and 17×17 agents × 300 samples, 1 and 2 ranks).
+// One-level Schwarz has no coarse space: a drag moves whole paths, a long-range mode its local blocks do not see,
+// so it stalls on the real edits; GAMG's coarse levels (with the translation/rotation/scaling near null space the
+// editor passes) carry that mode and converged in every case. GAMG is the default for robustness. 2 ranks were
+// slower than 1 here: on 2 shared cores the ranks compete with each other and with the rest of the machine.
 #include "backends.h"
 #include "blas_threads.h"
 #include "petsc_check.h"
