@@ -196,29 +196,37 @@ TEST_CASE("keyframes from a crowd file, and the formation step of throng run") {
 }
 
 TEST_CASE("bad formation jobs give their exit codes and leave no output") {
+  // `place`: the job's line the message must name ("job.yaml:5:" = the edits, the hierarchy, or keyframe 2's
+  // line), also when the solver finds the problem; empty: the message names no line (from_crowd, the file).
   const auto dir = test::scratch_dir("cli_formation_errors");
   struct Bad {
     const char* name;
     std::string job;
     int code;
     const char* message;
+    const char* place;
   };
   const std::vector<Bad> cases = {
-      {"disconnected", small_job("edits: {remove: [[0, 1], [0, 2]]}\n"), 3, "not connected"},
+      {"disconnected", small_job("edits: {remove: [[0, 1], [0, 2]]}\n"), 3, "not connected", "job.yaml:2:"},
       {"count", "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n  - {time: 1, positions: [[0, 0], [1, 0]]}\n",
-       3, "keyframe 1 has 2 individuals, keyframe 0 has 3"},
+       3, "keyframe 1 has 2 individuals, keyframe 0 has 3", "job.yaml:3:"},
       {"duplicate", "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n  - {time: 1, positions: [[3, 3], [1, 0], [3, 3]]}\n",
-       3, "both at (3, 3)"},
+       3, "both at (3, 3)", "job.yaml:3:"},
       {"times", "keyframes:\n  - {time: 1, positions: [[0, 0], [1, 0]]}\n  - {time: 1, positions: [[0, 1], [1, 1]]}\n", 3,
-       "must increase strictly"},
-      {"spacing", small_job("collision: {enabled: true, min_distance: 3}\n"), 3, "closer than collision.min_distance"},
-      {"unknown key", small_job("tensoin: 0.5\n"), 2, "tensoin"},
-      {"range", small_job("tension: 1.5\n"), 2, "tension"},
-      {"non-edge", small_job("edits: {remove: [[0, 4]]}\n"), 2, "remove[0]"},
-      {"bad hierarchy", small_job("hierarchy: {name: all, members: [0, 1, 2, 3]}\n"), 2, "individual 4"},
+       "must increase strictly", "job.yaml:3:"},
+      {"nan position", "keyframes:\n  - {time: 0, positions: [[0, 0], [1, .nan]]}\n  - {time: 1, positions: [[0, 1], [1, 1]]}\n", 3,
+       "individual 1's coordinate is '.nan', not a finite number", "job.yaml:2:"},
+      {"infinite time", "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n  - {time: .inf, positions: [[0, 1], [1, 1]]}\n", 3,
+       "keyframe 1's time is '.inf'", "job.yaml:3:"},
+      {"spacing", small_job("collision: {enabled: true, min_distance: 3}\n"), 3, "closer than collision.min_distance", "job.yaml:2:"},
+      {"unknown key", small_job("tensoin: 0.5\n"), 2, "tensoin", "job.yaml:5:"},
+      {"range", small_job("tension: 1.5\n"), 2, "tension", "job.yaml:5:"},
+      {"non-edge", small_job("edits: {remove: [[0, 4]]}\n"), 2, "remove[0]", "job.yaml:5:"},
+      {"unknown individual", small_job("edits: {remove: [[0, 5]]}\n"), 2, "edits.remove[0]: individual 5 does not exist", "job.yaml:5:"},
+      {"bad hierarchy", small_job("hierarchy: {name: all, members: [0, 1, 2, 3]}\n"), 2, "individual 4", "job.yaml:5:"},
       {"bad shape", "keyframes:\n  - {time: 0, shapes: [{spiral: {count: 3}}]}\n  - {time: 1, positions: [[0, 1]]}\n", 2,
-       "unknown shape 'spiral'"},
-      {"missing crowd", "from_crowd: {file: " + (dir / "nowhere.h5").string() + ", frames: [0, 1]}\n", 4, "nowhere.h5"},
+       "unknown shape 'spiral'", "job.yaml:2:"},
+      {"missing crowd", "from_crowd: {file: " + (dir / "nowhere.h5").string() + ", frames: [0, 1]}\n", 4, "nowhere.h5", ""},
   };
   for (const Bad& b : cases) {
     INFO(b.name);
@@ -226,6 +234,7 @@ TEST_CASE("bad formation jobs give their exit codes and leave no output") {
     std::string output;
     CHECK(run("formation " + (dir / "job.yaml").string() + " -o " + (dir / "out.h5").string(), &output) == b.code);
     CHECK_THAT(output, Contains(b.message));
+    if (*b.place) CHECK_THAT(output, Contains(b.place));
     CHECK(only_inputs_left(dir));
   }
 }

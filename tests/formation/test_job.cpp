@@ -11,6 +11,7 @@
 
 using namespace throng;
 using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
 
 namespace {
 
@@ -241,6 +242,36 @@ TEST_CASE("job errors: data problems are InputErrors with the line, syntax and o
         "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n  - {time: 1, positions: [[0, 1], [1, 1]]}\n"
         "edits: {remove: [[0, 1]]}\n"));
     CHECK_THROWS_AS(formation::animate_formation(job.problem, job.options), InputError);
+  }
+}
+
+TEST_CASE("errors the solver finds name the place in the job: a disconnected graph, an edit, the hierarchy") {
+  // The job's keyframes, edits and hierarchy carry their file:line into the problem; the solver's messages
+  // about them start with it.
+  auto solve = [](const std::string& text) {
+    const FormationJob job = read_formation_job(yaml(text));
+    (void)formation::animate_formation(job.problem, job.options);
+  };
+  SECTION("a keyframe whose graph the edits disconnect: the keyframe's line") {
+    const std::string text =
+        "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n"
+        "  - time: 1\n    positions: [[0, 1], [1, 1]]\n    edits: {remove: [[0, 1]]}\n";
+    CHECK_THROWS_AS(solve(text), InputError);
+    CHECK_THROWS_WITH(solve(text), StartsWith("job.yaml:3:") && Contains("formation keyframe 1") &&
+                                       Contains("disconnected") && Contains("individual 1 not connected"));
+  }
+  SECTION("an edit naming an individual that does not exist, or a pair that is not an edge: the edits' line") {
+    CHECK_THROWS_AS(solve(two_keyframes + "edits: {remove: [[0, 5]]}\n"), ConfigError);
+    CHECK_THROWS_WITH(solve(two_keyframes + "edits: {remove: [[0, 5]]}\n"),
+                      StartsWith("job.yaml:6:") && Contains("edits.remove[0]: individual 5 does not exist"));
+    // Square 0, 1, 3, 2 (2.5 m high on one side): its diagonal 0–3 is no edge of keyframe 0.
+    CHECK_THROWS_WITH(solve(two_keyframes + "edits: {scale: [{pairs: [[0, 3]], factor: 2}]}\n"),
+                      StartsWith("job.yaml:6:") && Contains("are not adjacent"));
+  }
+  SECTION("a hierarchy that misses an individual: the hierarchy's line") {
+    const std::string text = two_keyframes + "hierarchy: {name: all, groups: [{name: a, members: [0, 1]}, {name: b, members: [2]}]}\n";
+    CHECK_THROWS_AS(solve(text), ConfigError);
+    CHECK_THROWS_WITH(solve(text), StartsWith("job.yaml:6:") && Contains("individual 3 is in no group"));
   }
 }
 

@@ -88,6 +88,7 @@ const Group* find_group(const Group& g, const std::string& name) {
 
 AdjacencyEdits read_edits(const ConfigNode& node, const std::optional<Group>& hierarchy) {
   AdjacencyEdits edits;
+  edits.where = node.where();
   if (auto r = node.find("remove")) edits.remove = read_pairs(*r);
   if (auto a = node.find("add")) edits.add = read_pairs(*a);
   if (auto s = node.find("scale")) {
@@ -190,6 +191,17 @@ std::optional<Group> read_hierarchy(const ConfigNode& node, Options& options) {
   return read_group(node, "root");
 }
 
+// A number of the keyframe data (a coordinate, a time) written as YAML's .nan or .inf: bad data, an InputError
+// (exit 3) like the formation's other data problems and as animate_formation reports NaN positions given in
+// code. Anything that is not a number at all is left to as_double (a ConfigError: the job's syntax).
+void require_finite_data(const ConfigNode& node, const std::string& what) {
+  if (!node.is_scalar()) return;
+  double v = 0.0;
+  if (YAML::convert<double>::decode(node.yaml(), v) && !std::isfinite(v))
+    throw InputError(node.where() + ": " + what + " is '" + node.yaml().Scalar() +
+                     "', not a finite number; keyframe data must be finite");
+}
+
 // Keyframe positions: `positions` rows or generated `shapes`.
 Eigen::MatrixXd read_positions(const ConfigNode& key) {
   const bool has_positions = key.has("positions"), has_shapes = key.has("shapes");
@@ -198,9 +210,13 @@ Eigen::MatrixXd read_positions(const ConfigNode& key) {
   const ConfigNode rows = key.at("positions");
   const std::vector<ConfigNode> list = rows.elements();
   if (list.empty()) rows.fail("no positions");
+  if (list.front().is_sequence())
+    for (const ConfigNode& c : list.front().elements()) require_finite_data(c, "individual 0's coordinate");
   const std::size_t d = list.front().as_doubles({2, 3}).size();
   Eigen::MatrixXd out(static_cast<Eigen::Index>(list.size()), static_cast<Eigen::Index>(d));
   for (std::size_t i = 0; i < list.size(); ++i) {
+    if (list[i].is_sequence())
+      for (const ConfigNode& c : list[i].elements()) require_finite_data(c, "individual " + std::to_string(i) + "'s coordinate");
     const std::vector<double> v = list[i].as_doubles({2, 3});
     if (v.size() != d)
       throw InputError(list[i].where() + ": individual " + std::to_string(i) + " has " + std::to_string(v.size()) +
@@ -249,6 +265,7 @@ FormationJob read_formation_job(const ConfigNode& job) {
   if (auto h = job.find("hierarchy")) {
     if (!h->is_map()) h->fail("hierarchy is a mapping: a tree (name, members, groups), {sizes: [...]}, {nested: [...]} or {auto: N}");
     parsed.problem.hierarchy = read_hierarchy(*h, o);
+    if (parsed.problem.hierarchy) parsed.problem.hierarchy->where = h->where();
     parsed.hierarchy_yaml = YAML::Clone(h->yaml());
   }
   if (auto e = job.find("edits")) {
@@ -290,7 +307,9 @@ FormationJob read_formation_job(const ConfigNode& job) {
     for (std::size_t k = 0; k < list.size(); ++k) {
       const ConfigNode& key = list[k];
       formation::Keyframe keyframe;
+      keyframe.where = key.where();
       const ConfigNode time = key.at("time");
+      require_finite_data(time, "keyframe " + std::to_string(k) + "'s time");
       keyframe.time_s = time.as_double();
       if (!std::isfinite(keyframe.time_s)) time.fail("time must be a finite number of seconds");
       keyframe.positions = read_positions(key);
@@ -337,6 +356,9 @@ void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd) {
   }
   job.problem.keyframes = formation::keyframes_from_motion(m, frames, job.from_crowd->dimension);
   for (std::size_t k = 0; k < job.from_crowd->times.size(); ++k) job.problem.keyframes[k].time_s = job.from_crowd->times[k];
+  const std::string crowd_name = job.from_crowd->file.empty() ? std::string("the input crowd") : job.from_crowd->file;
+  for (std::size_t k = 0; k < frames.size(); ++k)
+    job.problem.keyframes[k].where = crowd_name + " frame " + std::to_string(frames[k]);
   if (job.problem.ids.empty()) job.problem.ids = m.ids;
   else if (job.problem.ids.size() != m.agent_count())
     throw ConfigError("ids: " + std::to_string(job.problem.ids.size()) + " ids for the crowd's " +

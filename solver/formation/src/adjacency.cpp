@@ -163,6 +163,7 @@ Adjacency delaunay_adjacency(const Eigen::Ref<const Eigen::MatrixXd>& points, co
 void apply_edits(Adjacency& graph, const Eigen::Ref<const Eigen::MatrixXd>& points, const std::vector<EdgeEdit>& edits,
                  const std::string& what, const std::vector<std::string>& item_names) {
   auto key = [](const EdgeEdit& e) { return std::make_pair(std::min(e.a, e.b), std::max(e.a, e.b)); };
+  auto placed = [](const EdgeEdit& e) { return e.place.empty() ? std::string() : e.place + ": "; };
   auto pair_text = [&](const EdgeEdit& e) {
     return item_names[static_cast<std::size_t>(e.a)] + " and " + item_names[static_cast<std::size_t>(e.b)];
   };
@@ -174,7 +175,7 @@ void apply_edits(Adjacency& graph, const Eigen::Ref<const Eigen::MatrixXd>& poin
       switch (e.kind) {
         case EdgeEdit::Kind::remove:
           if (it == graph.weights.end())
-            throw ConfigError(what + " " + e.where + ": " + pair_text(e) + " are not adjacent, nothing to remove");
+            throw ConfigError(placed(e) + what + " " + e.where + ": " + pair_text(e) + " are not adjacent, nothing to remove");
           graph.weights.erase(it);
           break;
         case EdgeEdit::Kind::add:
@@ -183,12 +184,12 @@ void apply_edits(Adjacency& graph, const Eigen::Ref<const Eigen::MatrixXd>& poin
         case EdgeEdit::Kind::scale:
         case EdgeEdit::Kind::scale_if_edge:
           if (!(e.factor > 0.0) || !std::isfinite(e.factor))
-            throw ConfigError(what + " " + e.where + ": factor " + std::to_string(e.factor) +
+            throw ConfigError(placed(e) + what + " " + e.where + ": factor " + std::to_string(e.factor) +
                               " must be finite and > 0 (use remove to cut an edge)");
           if (it != graph.weights.end()) {
             it->second *= e.factor;
           } else if (e.kind == EdgeEdit::Kind::scale) {
-            throw ConfigError(what + " " + e.where + ": " + pair_text(e) +
+            throw ConfigError(placed(e) + what + " " + e.where + ": " + pair_text(e) +
                               " are not adjacent, so their weight cannot be scaled (add the edge first)");
           }
           break;

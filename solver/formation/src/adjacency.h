@@ -10,7 +10,8 @@
 
 namespace throng::formation {
 
-/// One edit of a graph, on item indices (a ≠ b). `where` names it in messages ("edits.remove[2]").
+/// One edit of a graph, on item indices (a ≠ b). `where` names it in messages ("edits.remove[2]"), after
+/// `place` when there is one.
 struct EdgeEdit {
   enum class Kind {
     remove,          ///< the edge must exist
@@ -23,6 +24,7 @@ struct EdgeEdit {
   int b = 0;
   double factor = 1.0;
   std::string where;
+  std::string place;  ///< where the edit's list was given in a job ("job.yaml:7:8 (edits)"), or empty
 };
 
 /// Weighted undirected graph over `count` items: edges (i < j) → weight > 0.

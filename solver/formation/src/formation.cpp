@@ -24,6 +24,9 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw ConfigError(message);
 }
 
+// "job.yaml:12:5 (keyframes[1]): " in front of a message about something given there; nothing without a place.
+std::string at(const std::string& where) { return where.empty() ? std::string() : where + ": "; }
+
 void check_options(const Options& o) {
   require(std::isfinite(o.frame_rate_hz) && o.frame_rate_hz > 0,
           "formation.frame_rate: " + std::to_string(o.frame_rate_hz) + " must be a finite number > 0 (frames per second)");
@@ -60,7 +63,7 @@ void check_problem(const Problem& p) {
   if (d != 2 && d != 3) throw InputError("formation keyframe 0: positions have " + std::to_string(d) + " columns; expected 2 (x, y) or 3 (x, y, z)");
   for (std::size_t k = 0; k < p.keyframes.size(); ++k) {
     const Keyframe& key = p.keyframes[k];
-    const std::string what = "formation keyframe " + std::to_string(k);
+    const std::string what = at(key.where) + "formation keyframe " + std::to_string(k);
     if (key.positions.rows() != n)
       throw InputError(what + " has " + std::to_string(key.positions.rows()) + " individuals, keyframe 0 has " +
                        std::to_string(n) + "; every keyframe needs the same individuals");
@@ -95,18 +98,20 @@ struct IndividualEdit {
 std::vector<IndividualEdit> individual_edits(const Problem& p, std::size_t k, int n) {
   std::vector<IndividualEdit> out;
   int scale_group = 0;
+  std::string place;  // the place of the edit list being expanded
   auto check = [&](int i, const std::string& where) {
     if (i < 0 || i >= n)
-      throw ConfigError(where + ": individual " + std::to_string(i) + " does not exist (" + std::to_string(n) +
+      throw ConfigError(at(place) + where + ": individual " + std::to_string(i) + " does not exist (" + std::to_string(n) +
                         " individuals, 0.." + std::to_string(n - 1) + ")");
   };
   auto pair_edit = [&](EdgeEdit::Kind kind, const Pair& pair, double factor, const std::string& where) {
     check(pair[0], where);
     check(pair[1], where);
-    if (pair[0] == pair[1]) throw ConfigError(where + ": an edge needs two different individuals, got " + std::to_string(pair[0]) + " twice");
-    out.push_back(IndividualEdit{EdgeEdit{kind, pair[0], pair[1], factor, where}, -1});
+    if (pair[0] == pair[1]) throw ConfigError(at(place) + where + ": an edge needs two different individuals, got " + std::to_string(pair[0]) + " twice");
+    out.push_back(IndividualEdit{EdgeEdit{kind, pair[0], pair[1], factor, where, place}, -1});
   };
   auto add_all = [&](const AdjacencyEdits& edits, const std::string& prefix) {
+    place = edits.where;
     for (std::size_t i = 0; i < edits.remove.size(); ++i)
       pair_edit(EdgeEdit::Kind::remove, edits.remove[i], 1.0, prefix + "remove[" + std::to_string(i) + "]");
     for (std::size_t i = 0; i < edits.add.size(); ++i)
@@ -115,14 +120,14 @@ std::vector<IndividualEdit> individual_edits(const Problem& p, std::size_t k, in
       const EdgeScale& scale = edits.scale[s];
       const std::string where = prefix + "scale[" + std::to_string(s) + "]";
       if (!(scale.factor > 0) || !std::isfinite(scale.factor))
-        throw ConfigError(where + ": factor " + std::to_string(scale.factor) + " must be finite and > 0");
+        throw ConfigError(at(place) + where + ": factor " + std::to_string(scale.factor) + " must be finite and > 0");
       for (std::size_t i = 0; i < scale.pairs.size(); ++i)
         pair_edit(EdgeEdit::Kind::scale, scale.pairs[i], scale.factor, where + ".pairs[" + std::to_string(i) + "]");
       for (int m : scale.members) check(m, where + ".members");
       for (std::size_t a = 0; a < scale.members.size(); ++a)
         for (std::size_t b = a + 1; b < scale.members.size(); ++b)
           if (scale.members[a] != scale.members[b])
-            out.push_back(IndividualEdit{EdgeEdit{EdgeEdit::Kind::scale_if_edge, scale.members[a], scale.members[b], scale.factor, where + ".members"}, scale_group});
+            out.push_back(IndividualEdit{EdgeEdit{EdgeEdit::Kind::scale_if_edge, scale.members[a], scale.members[b], scale.factor, where + ".members", place}, scale_group});
       ++scale_group;
     }
   };
@@ -146,7 +151,7 @@ Adjacency summed_graph(const Problem& p, const std::vector<std::vector<Individua
   sum.count = n;
   for (std::size_t k = 0; k < p.keyframes.size(); ++k) {
     const std::string what = "formation keyframe " + std::to_string(k);
-    Adjacency g = delaunay_adjacency(p.keyframes[k].positions, what, names);
+    Adjacency g = delaunay_adjacency(p.keyframes[k].positions, at(p.keyframes[k].where) + what, names);
     std::vector<EdgeEdit> plain;
     for (const IndividualEdit& e : edits[k]) plain.push_back(e.edit);
     apply_edits(g, p.keyframes[k].positions, plain, what, names);
@@ -165,7 +170,7 @@ void check_keyframe_spacing(const Problem& p, double min_distance) {
     const CollisionReport r = closest_approach(flat, n, 1, min_distance);
     if (!r.satisfied) {
       std::ostringstream s;
-      s << "formation keyframe " << k << ": individuals " << r.closest_pair[0] << " and " << r.closest_pair[1] << " are "
+      s << at(p.keyframes[k].where) << "formation keyframe " << k << ": individuals " << r.closest_pair[0] << " and " << r.closest_pair[1] << " are "
         << r.closest_m << " m apart, closer than collision.min_distance " << min_distance
         << " m; keyframes are kept exactly, so they must respect the minimum distance";
       throw InputError(s.str());
@@ -218,7 +223,14 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
   } else {
     result.hierarchy = root_of_everyone(n);
   }
-  const Tree tree = flatten_tree(result.hierarchy, n);
+  const Tree tree = [&] {
+    try {
+      return flatten_tree(result.hierarchy, n);
+    } catch (const ConfigError& e) {
+      if (result.hierarchy.where.empty()) throw;
+      throw ConfigError(at(result.hierarchy.where) + e.what());
+    }
+  }();
   const EditMapper mapper(tree, n);
 
   // Each group's keyframes: items, anchors, edits mapped onto its items.
@@ -245,6 +257,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
       gk.anchors.push_back(anchor / static_cast<double>(node.individuals.size()));
       gk.positions.push_back(std::move(items));
       gk.edits.emplace_back();
+      gk.places.push_back(problem.keyframes[k].where);
     }
   }
   for (std::size_t k = 0; k < k_count; ++k) {

@@ -30,9 +30,11 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
   const double m = items_;
   dense::for_each(k_count, 10.0 * m * m * m + 2000.0 * m, [&](std::size_t k) {
     const std::string what = keyframes.what + " keyframe " + std::to_string(k);
-    Adjacency graph = delaunay_adjacency(keyframes.positions[k], what, keyframes.item_names);
+    const std::string place = k < keyframes.places.size() ? keyframes.places[k] : std::string();
+    const std::string placed = place.empty() ? what : place + ": " + what;  // edits name their own place
+    Adjacency graph = delaunay_adjacency(keyframes.positions[k], placed, keyframes.item_names);
     apply_edits(graph, keyframes.positions[k], keyframes.edits[k], what, keyframes.item_names);
-    require_connected(graph, what, keyframes.item_names);
+    require_connected(graph, placed, keyframes.item_names);
     eigenbases[k] = laplacian_eigenbasis(laplacian(graph));
     graphs_[k] = std::move(graph);
   });

@@ -24,12 +24,14 @@ namespace throng::formation {
 ///   anchors     K vectors of d: the group's reference point (its barycentre over all its individuals)
 ///   edits       K lists of graph edits on item indices
 ///   what        the group in messages ("formation", "group 'brass'"); item_names: "individual 7", ...
+///   places      K: where each keyframe was given (Keyframe::where), in front of messages about its graph
 struct GroupKeyframes {
   std::vector<Eigen::MatrixXd> positions;
   std::vector<Eigen::VectorXd> anchors;
   std::vector<std::vector<EdgeEdit>> edits;
   std::string what;
   std::vector<std::string> item_names;
+  std::vector<std::string> places;
 };
 
 class SpectralGroup {

@@ -52,9 +52,12 @@
 //
 // Exit codes: job syntax, unknown keys, options out of range, edits naming non-edges, a malformed hierarchy
 // are ConfigErrors (2). The formations themselves are data: a keyframe with a different number of individuals
-// or a different dimension, times not increasing, two individuals at the same position, a disconnected graph,
-// keyframes closer than collision.min_distance are InputErrors (3), naming the keyframe (and its line when
-// the keyframe is written in the job). See throng/formation/formation.h for the method.
+// or a different dimension, a position or time that is not a finite number (.nan, .inf), times not
+// increasing, two individuals at the same position, a disconnected graph, keyframes closer than
+// collision.min_distance are InputErrors (3), naming the keyframe. Every message about something written in
+// the job starts with its file:line:column — the keyframe, the edits list, the hierarchy — also when the solver
+// finds the problem (the places travel in Keyframe::where, AdjacencyEdits::where, Group::where); keyframes from
+// a crowd are named by the crowd file and frame. See throng/formation/formation.h for the method.
 #pragma once
 
 #include <throng/formation/formation.h>

@@ -131,12 +131,16 @@ struct AdjacencyEdits {
   std::vector<Pair> remove;        ///< each must be an edge
   std::vector<Pair> add;           ///< connected with weight 1/distance (a pair already adjacent is left as is)
   std::vector<EdgeScale> scale;
+  std::string where;               ///< where these edits were given ("job.yaml:7:8 (edits)"), put in front of
+                                   ///< messages about them; empty: nowhere to name
 };
 
 struct Keyframe {
   double time_s = 0.0;
   Eigen::MatrixXd positions;  ///< #individuals by 2 or 3 (metres); row i is individual i
   AdjacencyEdits edits;       ///< this keyframe only, after the problem-wide edits
+  std::string where;          ///< where the keyframe was given ("job.yaml:12:5 (keyframes[1])"), put in front of
+                              ///< messages about it (its graph, spacing, data); empty: nowhere to name
 };
 
 /// A group of the hierarchy (§4.4). The root holds everyone; each individual is in exactly one group.
@@ -144,6 +148,8 @@ struct Group {
   std::string name;
   std::vector<int> members;      ///< individuals directly in this group
   std::vector<Group> subgroups;  ///< nested groups (their barycentres are this group's other items)
+  std::string where;             ///< root only: where the tree was given ("job.yaml:3:12 (hierarchy)"), put in
+                                 ///< front of messages about the tree; empty: nowhere to name
 };
 
 struct Problem {
