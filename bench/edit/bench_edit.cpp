@@ -52,6 +52,12 @@ Scene scene(int agents, const std::string& backend) {
 void describe(benchmark::State& state, const edit::Report& r) {
   state.counters["unknowns"] = static_cast<double>(r.unknowns);
   state.counters["features"] = static_cast<double>(r.spatial_features + r.temporal_features + r.spatiotemporal_features);
+  state.counters["factor_nnz"] = r.factor_nonzeros;
+  state.counters["analyze_s"] = r.analyze_seconds;
+  state.counters["factorize_s"] = r.factorize_seconds;
+  state.counters["solve_s"] = r.solve_seconds;
+  state.counters["step1_s"] = r.step1_seconds;
+  state.counters["fit_s"] = r.fit_seconds;
   state.SetLabel(r.factorization);
 }
 

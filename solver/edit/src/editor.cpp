@@ -190,6 +190,11 @@ struct Editor::State {
       step1_solver.set_pinned(pinned);
       if (options.scale_compensation) step2_solver.set_pinned(pinned);
     }
+    if (!has_request || resolved.handle_vertices != current.handle_vertices ||
+        !same_matrix(resolved.handle_basis, current.handle_basis)) {
+      step1_solver.set_pin_basis(resolved.handle_basis);
+      if (options.scale_compensation) step2_solver.set_pin_basis(resolved.handle_basis);
+    }
     if (!has_request || !same_matrix(resolved.C, current.C)) {
       step1_solver.set_constraints(resolved.C);
       if (options.scale_compensation) step2_solver.set_constraints(resolved.C);
@@ -274,6 +279,12 @@ void Editor::precompute() {
     if (s.options.scale_compensation) s.step2_solver.precompute();
   });
   s.report.precompute_seconds = seconds_since(start);
+  s.report.analyze_seconds = s.step1_solver.report().analyze_seconds;
+  s.report.factorize_seconds = s.step1_solver.report().factorize_seconds;
+  if (s.options.scale_compensation) {
+    s.report.analyze_seconds += s.step2_solver.report().analyze_seconds;
+    s.report.factorize_seconds += s.step2_solver.report().factorize_seconds;
+  }
   s.report.factorization = s.step1_solver.report().factorization.method;
   s.report.fallback = s.step1_solver.report().factorization.fallback_reason;
   s.report.factor_nonzeros = s.step1_solver.report().factorization.factor_nonzeros +
@@ -291,12 +302,17 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& Editor::deform(const Request& re
   s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
   if (!s.step1_solver.is_ready() || (s.options.scale_compensation && !s.step2_solver.is_ready())) precompute();
   const auto start = Clock::now();
-  const Eigen::VectorXd pins = s.current.pin_values();
-  s.x1 = as_positions(s.in_user_terms([&] { return s.step1_solver.solve(s.step1.b, pins, s.current.d); }));
+  // Pins as coordinates in the handles' basis (request.h): step 1's b never changes, so a drag costs it no
+  // back-substitution; step 2's b does (the fitted triangles): one back-substitution.
+  const Eigen::VectorXd& pins = s.current.handle_coordinates;
+  s.x1 = as_positions(s.in_user_terms([&] { return s.step1_solver.solve_in_basis(s.step1.b, pins, s.current.d); }));
   s.report.max_constraint_residual = s.step1_solver.report().max_constraint_residual;
+  s.report.step1_seconds = seconds_since(start);
   if (s.options.scale_compensation) {
+    const auto fit_start = Clock::now();
     set_step2_targets(s.features, s.graph.clip.positions, s.x1, s.step2.b);
-    s.x2 = as_positions(s.in_user_terms([&] { return s.step2_solver.solve(s.step2.b, pins, s.current.d); }));
+    s.report.fit_seconds = seconds_since(fit_start);
+    s.x2 = as_positions(s.in_user_terms([&] { return s.step2_solver.solve_in_basis(s.step2.b, pins, s.current.d); }));
     s.report.max_constraint_residual = std::max(s.report.max_constraint_residual, s.step2_solver.report().max_constraint_residual);
   } else {
     s.x2 = s.x1;

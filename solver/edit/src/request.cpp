@@ -190,11 +190,24 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
 }
 
 ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids) {
-  // Handles: vertex → target and who set it; disagreement is a contradiction.
+  // Handles: vertex → target and who set it; disagreement is a contradiction. Each vertex is parametrised by
+  // the handle that placed it first: `column` is that handle's first coordinate, `rigid` says whether it is a
+  // drag (4 coordinates, original position p) or a pin (2 coordinates).
+  struct Parametrisation {
+    Index column = 0;
+    bool rigid = false;
+    Eigen::Vector2d p{0, 0};
+  };
   std::map<Index, std::pair<Eigen::Vector2d, std::string>> handles;
+  std::map<Index, Parametrisation> parametrisation;
+  std::vector<double> coordinates;
+  Parametrisation current;
   auto place = [&](std::size_t sample, std::size_t agent_index, const Eigen::Vector2d& target, const std::string& who) {
     if (!target.allFinite()) throw ConfigError(who + ": target position " + point(target) + " is not finite");
     const Index v = clip.vertex(sample, agent_index);
+    Parametrisation mine = current;
+    mine.p = original(clip, sample, agent_index);
+    parametrisation.emplace(v, mine);
     const auto [it, inserted] = handles.emplace(v, std::pair{target, who});
     if (!inserted && (it->second.first - target).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + target.cwiseAbs().maxCoeff())) {
       throw NumericalError("contradictory handles: " + it->second.second + " and " + who + " both place agent " +
@@ -207,7 +220,10 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     const std::string where = "pins[" + std::to_string(k) + "]";
     const std::size_t j = agent(clip, crowd_ids, p.agent, where + ".agent");
     const std::size_t s = sample_at(clip, p.frame, where + ".frame");
-    place(s, j, p.position.value_or(original(clip, s, j)), where);
+    const Eigen::Vector2d at = p.position.value_or(original(clip, s, j));
+    current = {static_cast<Index>(coordinates.size()), false, {0, 0}};
+    coordinates.insert(coordinates.end(), {at.x(), at.y()});
+    place(s, j, at, where);
   }
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& d = request.drags[k];
@@ -227,6 +243,10 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
       pivot /= static_cast<double>(samples.size() * agents.size());
     }
     const Eigen::Rotation2Dd turn(d.rotation);
+    // R p + t, t = pivot − R pivot + offset (exactly the offset without rotation).
+    const Eigen::Vector2d t = d.rotation == 0.0 ? d.offset : Eigen::Vector2d(pivot - turn * pivot + d.offset);
+    current = {static_cast<Index>(coordinates.size()), true, {0, 0}};
+    coordinates.insert(coordinates.end(), {d.rotation == 0.0 ? 1.0 : std::cos(d.rotation), d.rotation == 0.0 ? 0.0 : std::sin(d.rotation), t.x(), t.y()});
     for (std::size_t s : samples) {
       for (std::size_t j : agents) {
         // Without rotation the target is exactly original + offset (no round trip through the pivot).
@@ -238,10 +258,28 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
 
   ResolvedRequest out;
   out.handle_targets.resize(static_cast<Index>(handles.size()), 2);
+  std::vector<Eigen::Triplet<double>> basis;
   for (const auto& [v, target] : handles) {
-    out.handle_targets.row(static_cast<Index>(out.handle_vertices.size())) = target.first.transpose();
+    const auto k = static_cast<Index>(out.handle_vertices.size());
+    out.handle_targets.row(k) = target.first.transpose();
     out.handle_vertices.push_back(v);
+    const Parametrisation& q = parametrisation.at(v);
+    if (q.rigid) {  // x = p_x cos − p_y sin + t_x,  y = p_y cos + p_x sin + t_y
+      basis.emplace_back(2 * k, q.column, q.p.x());
+      basis.emplace_back(2 * k, q.column + 1, -q.p.y());
+      basis.emplace_back(2 * k, q.column + 2, 1.0);
+      basis.emplace_back(2 * k + 1, q.column, q.p.y());
+      basis.emplace_back(2 * k + 1, q.column + 1, q.p.x());
+      basis.emplace_back(2 * k + 1, q.column + 3, 1.0);
+    } else {
+      basis.emplace_back(2 * k, q.column, 1.0);
+      basis.emplace_back(2 * k + 1, q.column + 1, 1.0);
+    }
   }
+  out.handle_basis.resize(2 * static_cast<Index>(handles.size()), static_cast<Index>(coordinates.size()));
+  out.handle_basis.setFromTriplets(basis.begin(), basis.end());
+  out.handle_basis.makeCompressed();
+  out.handle_coordinates = Eigen::Map<const Eigen::VectorXd>(coordinates.data(), static_cast<Index>(coordinates.size()));
 
   // General constraints, one or two rows per sample.
   std::vector<Eigen::Triplet<double>> entries;

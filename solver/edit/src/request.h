@@ -16,9 +16,16 @@ namespace throng::edit {
 ///   handle_vertices  #handles graph vertices, increasing;   handle_targets  #handles by 2 (metres)
 ///   C                #rows by 2·#vertices;                    d               #rows
 ///   row_source       #rows, the index k of constraints[k] each row comes from
+///   handle_basis     2·#handles by #coordinates, handle_coordinates #coordinates: the pinned unknowns (in the
+///                    order of pinned_unknowns()) are handle_basis · handle_coordinates. A pin has 2 coordinates
+///                    (its position); a drag 4 (cos θ, sin θ, t): each of its vertices goes to R(θ) p + t with
+///                    t = pivot − R(θ) pivot + offset, so the basis depends on the original positions only and a
+///                    new drag of the same handles is a new coordinate vector (linalg: set_pin_basis).
 struct ResolvedRequest {
   std::vector<Eigen::Index> handle_vertices;
   Eigen::Matrix<double, Eigen::Dynamic, 2> handle_targets;
+  linalg::SparseMatrix handle_basis;
+  Eigen::VectorXd handle_coordinates;
   linalg::SparseMatrix C;
   Eigen::VectorXd d;
   std::vector<std::size_t> row_source;

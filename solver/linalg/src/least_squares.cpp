@@ -129,6 +129,12 @@ struct ConstrainedLeastSquares::State {
   // The free part of the last solve's first back-substitution: the start of the next one for iterative backends.
   Eigen::MatrixXd last_x0;
 
+  // Pin basis (set_pin_basis): x_P = B u, Z = Q_FF⁻¹ Q_FP B, and Q_FF⁻¹ last_r for the basis path.
+  SparseMatrix pin_basis;
+  Eigen::MatrixXd Z;
+  bool basis_stale = true;
+  Eigen::MatrixXd last_g;
+
   LeastSquaresReport report;
 
   [[nodiscard]] Index n() const { return A.cols(); }
@@ -139,7 +145,22 @@ struct ConstrainedLeastSquares::State {
     factor_stale = true;
     last_b.resize(0, 0);
     last_x0.resize(0, 0);
+    last_g.resize(0, 0);
+    basis_stale = true;
     invalidate_schur();
+  }
+  [[nodiscard]] bool has_basis() const { return pin_basis.cols() > 0; }
+
+  // Z = Q_FF⁻¹ Q_FP B, one block of back-substitutions.
+  void solve_basis() {
+    if (pin_basis.rows() != static_cast<Index>(pinned.size())) {
+      throw std::invalid_argument("ConstrainedLeastSquares: the pin basis has " + std::to_string(pin_basis.rows()) +
+                                  " rows for " + std::to_string(pinned.size()) + " pinned unknowns");
+    }
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd(SparseMatrix(Q_FP * pin_basis));
+    Z = free_count() > 0 ? solve_free(rhs) : Eigen::MatrixXd(0, pin_basis.cols());
+    report.basis_columns += static_cast<int>(pin_basis.cols());
+    basis_stale = false;
   }
   void invalidate_schur() {
     schur_rows = 0;
@@ -335,6 +356,13 @@ void ConstrainedLeastSquares::set_pinned(std::vector<Eigen::Index> pinned) {
   state_->invalidate_factor();
 }
 
+void ConstrainedLeastSquares::set_pin_basis(const SparseMatrix& basis) {
+  state_->pin_basis = basis;
+  state_->pin_basis.makeCompressed();
+  state_->Z.resize(0, 0);
+  state_->basis_stale = true;
+}
+
 void ConstrainedLeastSquares::set_constraints(const SparseMatrix& C) {
   state_->CT.resize(state_->n(), 0);
   state_->row_norm.resize(0);
@@ -441,41 +469,77 @@ void ConstrainedLeastSquares::precompute() {
     s.extend_schur();
     s.report.schur_seconds = seconds_since(start);
   }
+  if (s.has_basis() && s.basis_stale) {
+    const auto start = Clock::now();
+    s.solve_basis();
+    s.report.basis_seconds = seconds_since(start);
+  }
 }
 
 Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
                                                const Eigen::Ref<const Eigen::MatrixXd>& pin_values,
                                                const Eigen::Ref<const Eigen::MatrixXd>& d) {
+  return solve_any(b, pin_values, d, false);
+}
+
+Eigen::MatrixXd ConstrainedLeastSquares::solve_in_basis(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                                        const Eigen::Ref<const Eigen::MatrixXd>& coordinates,
+                                                        const Eigen::Ref<const Eigen::MatrixXd>& d) {
+  if (!state_->has_basis()) throw std::invalid_argument("ConstrainedLeastSquares::solve_in_basis: set_pin_basis() first");
+  return solve_any(b, coordinates, d, true);
+}
+
+Eigen::MatrixXd ConstrainedLeastSquares::solve_any(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                                   const Eigen::Ref<const Eigen::MatrixXd>& pins,
+                                                   const Eigen::Ref<const Eigen::MatrixXd>& d, bool in_basis) {
   State& s = *state_;
   if (!is_ready()) precompute();
   const Index k = b.cols();
-  if (b.rows() != s.A.rows() || pin_values.rows() != static_cast<Index>(s.pinned.size()) || d.rows() != s.m() ||
-      (pin_values.cols() != k && pin_values.size() > 0) || (d.cols() != k && d.size() > 0)) {
+  const Index pin_rows = in_basis ? s.pin_basis.cols() : static_cast<Index>(s.pinned.size());
+  if (b.rows() != s.A.rows() || pins.rows() != pin_rows || d.rows() != s.m() || (pins.cols() != k && pins.size() > 0) ||
+      (d.cols() != k && d.size() > 0)) {
     std::ostringstream what;
     what << "ConstrainedLeastSquares::solve: b is " << b.rows() << "×" << b.cols() << " (expected " << s.A.rows()
-         << " rows), pin values " << pin_values.rows() << "×" << pin_values.cols() << " (expected " << s.pinned.size()
-         << " rows), d " << d.rows() << "×" << d.cols() << " (expected " << s.m() << " rows), same columns";
+         << " rows), pin " << (in_basis ? "coordinates " : "values ") << pins.rows() << "×" << pins.cols() << " (expected "
+         << pin_rows << " rows), d " << d.rows() << "×" << d.cols() << " (expected " << s.m() << " rows), same columns";
     throw std::invalid_argument(what.str());
   }
-  if (!b.allFinite() || !pin_values.allFinite() || !d.allFinite()) {
+  if (!b.allFinite() || !pins.allFinite() || !d.allFinite()) {
     throw std::invalid_argument("ConstrainedLeastSquares::solve: a right-hand side, pin value or constraint value is not finite");
   }
   const auto start = Clock::now();
   const Index nf = s.free_count();
-  const Eigen::MatrixXd xp = pin_values.size() > 0 ? Eigen::MatrixXd(pin_values) : Eigen::MatrixXd::Zero(s.pinned.size(), k);
+  const Eigen::MatrixXd given = pins.size() > 0 ? Eigen::MatrixXd(pins) : Eigen::MatrixXd::Zero(pin_rows, k);
+  const Eigen::MatrixXd xp = in_basis ? Eigen::MatrixXd(s.pin_basis * given) : given;
 
-  // r = (AᵀW b)_F − Q_FP x_P.
-  if (s.last_b.rows() != b.rows() || s.last_b.cols() != b.cols() || s.last_b != b) {
+  // (AᵀW b)_F, kept while b does not change.
+  const bool new_b = s.last_b.rows() != b.rows() || s.last_b.cols() != b.cols() || s.last_b != b;
+  if (new_b) {
     const Eigen::MatrixXd AtWb = s.A.transpose() * (s.weights.asDiagonal() * b);
     s.last_r.resize(nf, k);
     for (Index i = 0; i < nf; ++i) s.last_r.row(i) = AtWb.row(s.free_unknowns[static_cast<std::size_t>(i)]);
     s.last_b = b;
+    s.last_g.resize(0, 0);
   }
-  Eigen::MatrixXd r = s.last_r;
-  if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
+  // r = (AᵀW b)_F − Q_FP x_P: the first back-substitution's right-hand side (and the uncached Schur path's).
+  auto residual_rhs = [&] {
+    Eigen::MatrixXd r = s.last_r;
+    if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
+    return r;
+  };
 
   Eigen::MatrixXd xf(nf, k);
-  if (nf > 0) {
+  if (nf > 0 && in_basis) {
+    // x_F = Q_FF⁻¹ r_b − Z u: a back-substitution only when b changed.
+    if (s.last_g.rows() != nf || s.last_g.cols() != k) {
+      s.last_g.resize(nf, k);
+      s.backend->solve(s.last_r, s.last_g);
+      s.report.last_solve = s.backend->solve_info();
+    }
+    xf = s.last_g;
+    xf.noalias() -= s.Z * given;
+  } else if (nf > 0) {
+    const Eigen::MatrixXd r = residual_rhs();
     if (s.last_x0.rows() == nf && s.last_x0.cols() == k) {
       xf = s.last_x0;
       s.backend->solve_from(r, xf);
@@ -499,7 +563,7 @@ Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::Mat
       if (s.y_cached) {
         xf.noalias() -= s.Y * lambda;
       } else {
-        xf = s.solve_free(r - s.CT_F * lambda);
+        xf = s.solve_free(residual_rhs() - s.CT_F * lambda);
       }
     }
   }
@@ -543,7 +607,7 @@ Eigen::Index ConstrainedLeastSquares::constraints() const noexcept { return stat
 const std::vector<Eigen::Index>& ConstrainedLeastSquares::pinned() const noexcept { return state_->pinned; }
 bool ConstrainedLeastSquares::is_ready() const noexcept {
   const State& s = *state_;
-  return !s.q_stale && !s.analysis_stale && !s.factor_stale && s.schur_rows == s.m();
+  return !s.q_stale && !s.analysis_stale && !s.factor_stale && s.schur_rows == s.m() && !(s.has_basis() && s.basis_stale);
 }
 const LeastSquaresReport& ConstrainedLeastSquares::report() const noexcept { return state_->report; }
 const SolverOptions& ConstrainedLeastSquares::options() const noexcept { return state_->options; }

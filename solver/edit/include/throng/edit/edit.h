@@ -145,7 +145,11 @@ struct Report {
   std::vector<std::int64_t> left_out;  ///< agents absent somewhere in the clip (not edited, not in the output)
   double graph_seconds = 0;      ///< clip, Delaunay, features, both systems assembled
   double precompute_seconds = 0; ///< analyse and factorise both steps (and Schur complements)
+  double analyze_seconds = 0;    ///< of which: assembling AᵀWA and the symbolic analyses, both steps
+  double factorize_seconds = 0;  ///< of which: the numeric factorisations, both steps
   double solve_seconds = 0;      ///< last deform(): step 1, fitting, step 2
+  double step1_seconds = 0;      ///< of which: step 1's solve
+  double fit_seconds = 0;        ///< of which: the triangle fits (step 2's targets)
   std::string factorization;     ///< backend method of step 1 (for example "CHOLMOD supernodal LLᵀ (METIS)")
   std::string fallback;          ///< non-empty when the backend fell back, saying why
   double max_constraint_residual = 0;  ///< metres, general constraints at the samples, over both steps, last deform()

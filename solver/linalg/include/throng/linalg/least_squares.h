@@ -57,6 +57,8 @@ struct LeastSquaresReport {
   double analyze_seconds = 0;     ///< last analysis (assembling Q and the symbolic phase)
   double factorize_seconds = 0;   ///< last factorisation
   double schur_seconds = 0;       ///< last Schur complement update
+  double basis_seconds = 0;       ///< last pin-basis solve (set_pin_basis)
+  int basis_columns = 0;          ///< back-substitutions spent on pin-basis columns so far
   double solve_seconds = 0;       ///< last solve
   Eigen::Index constraint_rank = 0;         ///< rank of the constraints on the free unknowns
   double max_constraint_residual = 0;       ///< max |c·x − d| over unit-length rows, last solve
@@ -80,6 +82,14 @@ class ConstrainedLeastSquares {
   void set_weights(const Eigen::Ref<const Eigen::VectorXd>& weights);
   /// The pinned unknowns (distinct, any order; values come with each solve). Invalidates everything.
   void set_pinned(std::vector<Eigen::Index> pinned);
+  /// Pin values given as coordinates in a basis: x[pinned] = B u, B #pinned by #coordinates (rows in the order
+  /// of set_pinned), u passed to solve_in_basis(). precompute() then also solves Q_FF Z = Q_FP B (#coordinates
+  /// back-substitutions, one block), and every solve_in_basis() whose b is the previous one's costs no
+  /// back-substitution at all: x_F = Q_FF⁻¹ r_b − Z u (r_b = (AᵀW b)_F, cached). For rigid drags u is a handful
+  /// of numbers per drag (cos θ, sin θ, translation): the per-drag cost of the editor's step 1.
+  /// An empty B (0 columns) removes the basis. Invalidates Z only.
+  void set_pin_basis(const SparseMatrix& basis);
+
   /// Replaces the general constraints. Invalidates the Schur complement only.
   void set_constraints(const SparseMatrix& C);
   /// Appends constraint rows: costs one back-substitution per new row, the factorisation is kept.
@@ -106,6 +116,12 @@ class ConstrainedLeastSquares {
                                       const Eigen::Ref<const Eigen::MatrixXd>& pin_values,
                                       const Eigen::Ref<const Eigen::MatrixXd>& d);
 
+  /// As solve(), with the pin values B u of set_pin_basis() (u: #coordinates by #rhs). Same result as solve()
+  /// with pin_values = B u up to rounding; the same calls give the same bits.
+  [[nodiscard]] Eigen::MatrixXd solve_in_basis(const Eigen::Ref<const Eigen::MatrixXd>& b,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& coordinates,
+                                               const Eigen::Ref<const Eigen::MatrixXd>& d);
+
   [[nodiscard]] Eigen::Index unknowns() const noexcept;
   [[nodiscard]] Eigen::Index constraints() const noexcept;
   [[nodiscard]] const std::vector<Eigen::Index>& pinned() const noexcept;
@@ -115,6 +131,9 @@ class ConstrainedLeastSquares {
   [[nodiscard]] const SolverOptions& options() const noexcept;
 
  private:
+  Eigen::MatrixXd solve_any(const Eigen::Ref<const Eigen::MatrixXd>& b, const Eigen::Ref<const Eigen::MatrixXd>& pins,
+                            const Eigen::Ref<const Eigen::MatrixXd>& d, bool in_basis);
+
   struct State;
   std::unique_ptr<State> state_;
 };
