@@ -1,6 +1,8 @@
 // The independent checker: hand-built tilings, good and bad in each of the ways it must catch.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <throng/core/errors.h>
 #include <throng/tiling/check.h>
 
@@ -70,6 +72,41 @@ TEST_CASE("the checker finds an overlap between instances but not within a chara
   Tiling apart = walk_chain(lib, 6, -1.0, 3.0, 2.0);
   append(apart, walk_chain(lib, 6, -1.0, 3.6, 2.0));
   CHECK(check_tiling(lib, apart, box(12, 12, 20), CheckOptions{}).perfect());
+}
+
+TEST_CASE("the checker finds characters of one instance overlapping, unless their patch brings them together") {
+  // A pass whose two characters are pulled 0.2 m toward each other at the crossing: 0.41 m apart, radii 0.5 m.
+  PatchLibrary lib = builtin_library({"pass"});
+  const Environment env = box(12, 12, 20);
+  REQUIRE(contact_pairs(lib.types[0]).empty());
+  Instance crossing = placed(lib, 0, {6, 6}, 0.0, 10.0);
+  const CheckReport clear = check_tiling(lib, {{crossing}, {}}, env, CheckOptions{});
+  CHECK(clear.count(FailureKind::overlap) == 0);
+  // Each character moved whole (no stretch, no bend) 0.1 m toward the other's centroid.
+  const auto centroid = [&](std::size_t f) {
+    Eigen::Vector2d c(0, 0);
+    for (const Eigen::Vector2d& p : crossing.paths[f].positions) c += p;
+    return Eigen::Vector2d(c / static_cast<double>(crossing.paths[f].positions.size()));
+  };
+  const Eigen::Vector2d towards = (centroid(1) - centroid(0)).normalized();
+  for (Eigen::Vector2d& p : crossing.paths[0].positions) p += 0.1 * towards;
+  for (Eigen::Vector2d& p : crossing.paths[1].positions) p -= 0.1 * towards;
+  const CheckReport r = check_tiling(lib, {{crossing}, {}}, env, CheckOptions{});
+  CHECK(r.count(FailureKind::overlap) == 1);
+  const auto overlap = std::find_if(r.failures.begin(), r.failures.end(), [](const Failure& f) { return f.kind == FailureKind::overlap; });
+  REQUIRE(overlap != r.failures.end());
+  CHECK(overlap->message.find("instance 0 ('pass') fragment 0 and instance 0 ('pass') fragment 1") != std::string::npos);
+  // The same paths as the patch's own: it declares the contact (a couple walking arm in arm), nothing fails.
+  PatchLibrary close = lib;
+  close.types[0].fragments = {};
+  for (std::size_t f = 0; f < 2; ++f) {
+    Fragment fr = lib.types[0].fragments[f];
+    for (std::size_t s = 0; s < fr.sample_count(); ++s) fr.positions[s] = crossing.paths[f].positions[s] - Eigen::Vector2d(6, 6);
+    close.types[0].fragments.push_back(fr);
+  }
+  REQUIRE(contact_pairs(close.types[0]).size() == 1);
+  const Instance as_recorded = placed(close, 0, {6, 6}, 0.0, 10.0);
+  CHECK(check_tiling(close, {{as_recorded}, {}}, env, CheckOptions{}).count(FailureKind::overlap) == 0);
 }
 
 TEST_CASE("the checker finds an over-stretched, over-bent or time-shifted patch") {

@@ -281,7 +281,32 @@ class Checker {
     double lo[3], hi[3];  // x, y, t grown by the radius in space
   };
 
+  // Fragment pairs (a < b) each type brings into contact itself (patch.h contact_pairs), computed here with the
+  // checker's own geometry from the library: the only pairs of an instance allowed closer than their radii.
+  [[nodiscard]] std::vector<std::set<std::pair<std::size_t, std::size_t>>> declared_contacts() const {
+    std::vector<std::set<std::pair<std::size_t, std::size_t>>> out(lib_.types.size());
+    for (std::size_t k = 0; k < lib_.types.size(); ++k) {
+      const PatchType& t = lib_.types[k];
+      for (std::size_t a = 0; a < t.fragments.size(); ++a) {
+        for (std::size_t b = a + 1; b < t.fragments.size(); ++b) {
+          const Fragment& fa = t.fragments[a];
+          const Fragment& fb = t.fragments[b];
+          double d = std::numeric_limits<double>::infinity();
+          for (std::size_t s = 0; s + 1 < fa.sample_count(); ++s) {
+            for (std::size_t u = 0; u + 1 < fb.sample_count(); ++u) {
+              d = std::min(d, approach(fa.positions[s], fa.positions[s + 1], fa.times[s], fa.times[s + 1], fb.positions[u],
+                                       fb.positions[u + 1], fb.times[u], fb.times[u + 1]));
+            }
+          }
+          if (d < fa.radius_m + fb.radius_m) out[k].insert({a, b});
+        }
+      }
+    }
+    return out;
+  }
+
   void overlaps() {
+    const auto contacts = declared_contacts();
     std::set<std::pair<FragmentRef, FragmentRef>> joined;
     for (const Connection& k : tiling_.connections) {
       joined.insert({k.from, k.to});
@@ -326,7 +351,12 @@ class Checker {
         for (std::size_t ib = first; ib < boxes.size(); ++ib) {
           const Box& b = boxes[ib];
           if (b.lo[2] + st > a.hi[2]) break;
-          if (b.instance == a.instance) continue;
+          if (b.instance == a.instance) {
+            // Two fragments of one instance: tested unless the patch declares them in contact.
+            if (b.fragment == a.fragment || im != std::array<int, 3>{0, 0, 0}) continue;
+            const auto pair = std::minmax(a.fragment, b.fragment);
+            if (contacts[tiling_.instances[a.instance].type].contains({pair.first, pair.second})) continue;
+          }
           if (b.hi[2] + st < a.lo[2] || b.lo[0] + sx > a.hi[0] || b.hi[0] + sx < a.lo[0] || b.lo[1] + sy > a.hi[1] ||
               b.hi[1] + sy < a.lo[1]) {
             continue;

@@ -163,22 +163,23 @@ struct Builder {
       return t;
     }
     if (name == "pass") {
-      // Walk past each other, each sidestepping to 0.6 m apart at the crossing.
+      // Walk past each other, each sidestepping to 0.6 m apart at the crossing (at the default 1.3 m/s and 2 s:
+      // ±27° legs of 0.5 s step each 0.30 m aside; the centres pass 0.61 m apart, clear of the radii).
       PatchType t;
       t.name = name;
       t.fragments.push_back(draw({-0.5 * v() * D(), 0}, 0,
-                                 {{0.25 * D(), v(), v(), 20 * deg}, {0.25 * D(), v(), v(), -20 * deg},
-                                  {0.25 * D(), v(), v(), -20 * deg}, {0.25 * D(), v(), v(), 20 * deg}},
+                                 {{0.25 * D(), v(), v(), 27 * deg}, {0.25 * D(), v(), v(), -27 * deg},
+                                  {0.25 * D(), v(), v(), -27 * deg}, {0.25 * D(), v(), v(), 27 * deg}},
                                  r(), R, walking, walking));
       t.fragments.push_back(turned(t.fragments[0], pi));
       tie(t, 0, 1, {0.5 * D()});
       return t;
     }
     if (name == "handshake") {
-      // Approach side by side offset, stand 0.8 m apart shaking hands, walk on past each other.
+      // Approach side by side offset, stand 0.9 m apart shaking hands, walk on past each other 0.7 m apart.
       const double brake = 1.5, shake = 1.5, go = 1.5;
       const double reach = 0.5 * v() * brake;
-      const Fragment a = draw({-0.3 - reach, 0.3}, 0, {{brake, v(), 0}, {shake, 0, 0}, {go, 0, v()}}, r(), R, walking, walking);
+      const Fragment a = draw({-0.3 - reach, 0.35}, 0, {{brake, v(), 0}, {shake, 0, 0}, {go, 0, v()}}, r(), R, walking, walking);
       PatchType t;
       t.name = name;
       t.label = "friendly";
@@ -187,11 +188,12 @@ struct Builder {
       return t;
     }
     if (name == "bump") {
-      // Shoulders bump at the crossing; both are deflected and slowed, then walk on.
+      // Shoulders bump at the crossing (the capsules brush: centres 2R + 2 cm apart); both are deflected and
+      // slowed, then walk on.
       PatchType t;
       t.name = name;
       t.label = "hostile";
-      t.fragments.push_back(draw({-0.5 * v() * D(), 0.2}, 0,
+      t.fragments.push_back(draw({-0.5 * v() * D(), R + 0.01}, 0,
                                  {{0.5 * D(), v(), v()}, {0.2 * D(), v(), 0.6 * v(), 25 * deg}, {0.3 * D(), 0.6 * v(), v()}},
                                  r(), R, walking, walking));
       t.fragments.push_back(turned(t.fragments[0], pi));

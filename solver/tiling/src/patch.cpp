@@ -22,6 +22,26 @@ std::size_t PatchType::sample_count() const noexcept {
   return n;
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> contact_pairs(const PatchType& type) {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t a = 0; a < type.fragments.size(); ++a) {
+    for (std::size_t b = a + 1; b < type.fragments.size(); ++b) {
+      const Fragment& fa = type.fragments[a];
+      const Fragment& fb = type.fragments[b];
+      bool contact = false;
+      for (std::size_t s = 0; s + 1 < fa.sample_count() && !contact; ++s) {
+        const MovingDisc p{fa.positions[s], fa.positions[s + 1], fa.times[s], fa.times[s + 1], fa.radius_m};
+        for (std::size_t u = 0; u + 1 < fb.sample_count() && !contact; ++u) {
+          const MovingDisc q{fb.positions[u], fb.positions[u + 1], fb.times[u], fb.times[u + 1], fb.radius_m};
+          contact = closest_approach(p, q) < fa.radius_m + fb.radius_m;
+        }
+      }
+      if (contact) out.emplace_back(a, b);
+    }
+  }
+  return out;
+}
+
 double PatchType::start_time() const noexcept {
   double t = std::numeric_limits<double>::infinity();
   for (const Fragment& f : fragments) {

@@ -27,6 +27,16 @@ Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options&
   for (std::size_t k = 0; k < usable.size(); ++k) {
     if (usable[k]) usable_types.push_back(k);
   }
+  for (const PatchType& type : library.types) {
+    const auto contact = contact_pairs(type);
+    std::vector<std::pair<std::size_t, std::size_t>> clear;
+    for (std::size_t a = 0; a < type.fragments.size(); ++a) {
+      for (std::size_t b = a + 1; b < type.fragments.size(); ++b) {
+        if (std::find(contact.begin(), contact.end(), std::pair(a, b)) == contact.end()) clear.emplace_back(a, b);
+      }
+    }
+    clear_pairs.push_back(std::move(clear));
+  }
   max_extent_m = max_extent_of(library);
   max_half_duration_s = max_half_duration_of(library);
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;

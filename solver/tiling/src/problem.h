@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include <utility>
 #include <vector>
 
 namespace throng::tiling {
@@ -35,6 +36,9 @@ struct Problem {
   std::vector<PatchSystem> systems;     ///< per type
   std::vector<bool> usable;             ///< per type: may be proposed (viability.h)
   std::vector<std::size_t> usable_types;
+  /// Per type, the fragment pairs (a < b) an instance must keep clear of each other: all but the patch's own
+  /// contact pairs (patch.h).
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> clear_pairs;
   double max_extent_m = 0;              ///< largest distance of a sample from its patch's centroid
   double max_half_duration_s = 0;       ///< largest half time span of a patch
   std::vector<Eigen::AlignedBox2d> obstacle_bounds;  ///< per obstacle, over the region's time span and margins

@@ -385,6 +385,23 @@ bool Stitcher::valid(const Attempt& attempt) {
       }
     }
   }
+  // Within each deformed instance: the pairs its patch keeps clear stay clear (props and characters alike).
+  for (const Tested& t : tested) {
+    if (t.id == fresh && change.links.empty()) continue;  // placed rigidly: as clear as the patch itself
+    const std::uint32_t type = t.id == fresh ? change.type : state_.at(t.id).type;
+    for (const auto& [fa, fb] : problem_.clear_pairs[type]) {
+      const Path& a = (*t.paths)[fa];
+      const Path& b = (*t.paths)[fb];
+      const double ra = t.type->fragments[fa].radius_m, rb = t.type->fragments[fb].radius_m;
+      for (std::size_t s = 0; s + 1 < a.times.size(); ++s) {
+        const MovingDisc q{a.positions[s], a.positions[s + 1], a.times[s], a.times[s + 1], ra};
+        for (std::size_t u = 0; u + 1 < b.times.size(); ++u) {
+          if (b.times[u] > q.tb || b.times[u + 1] < q.ta) continue;
+          if (closest_approach(q, {b.positions[u], b.positions[u + 1], b.times[u], b.times[u + 1], rb}) < ra + rb) return false;
+        }
+      }
+    }
+  }
   // The tested instances among themselves.
   for (std::size_t i = 0; i < tested.size(); ++i) {
     for (std::size_t j = i + 1; j < tested.size(); ++j) {

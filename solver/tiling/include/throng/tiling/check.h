@@ -8,9 +8,10 @@
 //                   Eq. 1 (same position), Eq. 2 (same tangent), Eq. 3 (same time), headings within the match
 //                   angle; images only on periodic axes
 //   seam            the same, for connections across a periodic boundary (image ≠ 0)
-//   overlap         no two capsules (characters and props) of different instances closer than the sum of their
-//                   radii at any time — exact on the linearly interpolated paths, over every periodic image —
-//                   except the two fragments a connection joins
+//   overlap         no two capsules (characters and props) closer than the sum of their radii at any time —
+//                   exact on the linearly interpolated paths, over every periodic image — except the two
+//                   fragments a connection joins and, within one instance, the pairs its patch itself brings
+//                   into contact (patch.h contact_pairs, recomputed here)
 //   obstacle        no capsule closer to an obstacle than its radius at the sampled points
 //   deformation     per-frame stretch, bend and time-shift limits against the undeformed patch (options.h);
 //                   times strictly increasing

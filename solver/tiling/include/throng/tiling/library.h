@@ -13,9 +13,9 @@
 //   wait            1  standing → standing   stand still
 //   turn_in_place   1  standing → standing   turn 90° on the spot
 //   meet            2  walking → walking     approach, stop face to face 1 m apart, talk, walk off to the sides
-//   pass            2  walking → walking     walk past each other 0.6 m apart, each sidestepping
-//   handshake       2  walking → walking     approach, stand 0.8 m apart shaking hands, walk on past each other
-//   bump            2  walking → walking     shoulders bump, both are deflected
+//   pass            2  walking → walking     walk past each other 0.6 m apart, each sidestepping 0.3 m
+//   handshake       2  walking → walking     approach, stand 0.9 m apart shaking hands, walk on past each other
+//   bump            2  walking → walking     shoulders brush (capsules 2 cm apart), both are deflected
 //   bow_rows        10 walking → walking     two rows of five walk in side by side, bow to each other, turn round and walk back out (label "group")
 //   box_pickup      1  standing → carrying   take a box from a stack (prop: the stack)
 //   box_carry       1  carrying → carrying   walk with the box
@@ -25,7 +25,8 @@
 //   box_stand       1  sitting → walking     stand up and walk away (prop: the box, left behind)
 // A character carrying a box (or sitting on one) is a capsule 0.1 m wider; boxes on the ground are props.
 // Interpersonal constraints tie the characters of two-character and group patches at the frames where they
-// interact.
+// interact. No two capsules of a built-in patch (characters and props) ever overlap: the patches declare no
+// contact (patch.h, contact_pairs), so the tiler and the checker keep every pair of an instance clear.
 #pragma once
 
 #include <throng/tiling/patch.h>

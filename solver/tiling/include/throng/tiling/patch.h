@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace throng::tiling {
@@ -81,6 +82,12 @@ struct PatchLibrary {
   /// type, the fragment, the sample and the value.
   void validate(const std::string& what = "patch library") const;
 };
+
+/// The pairs of fragments (a < b) that the patch itself brings closer than the sum of their radii at some
+/// time: contact the patch declares by its own data (a recorded couple walking arm in arm, a hand-over). Every
+/// other pair of an instance must keep clear however the instance deforms; the tiler and the checker test it.
+/// Exact on the linearly interpolated paths.
+[[nodiscard]] std::vector<std::pair<std::size_t, std::size_t>> contact_pairs(const PatchType& type);
 
 /// Re-expresses every type in its canonical frame, which the preference function (Eq. 7) and the instance
 /// transforms refer to: origin at the centroid of all samples, +x along the mean travel direction (sum over
