@@ -201,6 +201,10 @@ TEST_CASE("bad edits exit with their documented codes and leave no output") {
        "  - {type: relative_position, agent: 100, other: 101, frames: [10, 10], offset: [2, 0]}\n",
        5, "contradictory constraints: constraints[0]"},
       {"pins:\n  - {agent: 100, frame: 0}\n", 5, "the system is singular"},
+      {"drags:\n  - {frames: [0, 0]}\n  - {frames: [40, 40]}\nweights: {alpha: 0, beta: 0}\n", 5,
+       "weights.alpha and weights.beta are 0"},
+      {"drags:\n  - {frames: [0, 0]}\n  - {frames: [40, 40]}\nweights: {alpha_prime: 0, beta_prime: 0}\n", 5,
+       "step 2 (scale compensation) is singular: weights.alpha_prime and weights.beta_prime are 0"},
   };
   for (const Case& c : cases) {
     const auto job = write_job(dir, "job.yaml", c.job);

@@ -102,6 +102,31 @@ TEST_CASE("a system the handles do not determine is a singular-system error") {
   expect<NumericalError>(r, "agent 101 over frames 0..20 forms a group joined to the rest by no feature", cut);
 }
 
+TEST_CASE("zero time weights in either step are named as the cause of a singular system") {
+  // Without ET and EST nothing ties one sample to the next: with handles at the ends only, the samples between
+  // float. Step 1 checks α, β; step 2 (scale compensation) checks α′, β′ with its own weights.
+  Options step1;
+  step1.alpha = step1.beta = 0;
+  expect<NumericalError>(held_ends(), "the system of step 1 is singular: weights.alpha and weights.beta are 0", step1);
+  Options step2;
+  step2.alpha_prime = step2.beta_prime = 0;
+  expect<NumericalError>(held_ends(), "the system of step 2 (scale compensation) is singular: weights.alpha_prime and "
+                                      "weights.beta_prime are 0",
+                         step2);
+  // Without step 2 its weights do not matter; with every sample held, zero weights are fine.
+  step2.scale_compensation = false;
+  CHECK_NOTHROW(edit_group_motion(crowd_with_leaver(), step2, held_ends()));
+  Request all;
+  all.drags.resize(1);
+  all.drags[0].selection.last_frame = 20;
+  step1.clip.agents = {100, 101, 102};
+  CHECK_NOTHROW(edit_group_motion(crowd_with_leaver(), step1, all));
+  // One of the two is enough to join the samples.
+  step1 = {};
+  step1.alpha = 0;
+  CHECK_NOTHROW(edit_group_motion(crowd_with_leaver(), step1, held_ends()));
+}
+
 TEST_CASE("bad option values are configuration errors") {
   Options options;
   options.alpha = -1;

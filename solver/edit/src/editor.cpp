@@ -119,8 +119,11 @@ struct Editor::State {
   }
 
   // Every part of the graph tied together by features (of terms with a positive weight) needs two handles
-  // at distinct original places, or a handle on its only vertex: otherwise step 1 is singular.
-  void check_determined(const std::vector<Index>& handles) const {
+  // at distinct original places, or a handle on its only vertex: otherwise the step is singular. Step 1 weighs
+  // the temporal and spatiotemporal terms by α, β, step 2 by α′, β′ (`alpha_key`, `beta_key` name them); the
+  // spatial term (ES, or ESC in step 2) always has weight 1.
+  void check_determined(const std::vector<Index>& handles, double alpha, double beta, const char* step,
+                        const char* alpha_key, const char* beta_key) const {
     const std::size_t vertices = graph.vertex_count();
     Components parts(vertices);
     auto join = [&](const std::vector<Feature>& set, double weight) {
@@ -131,8 +134,8 @@ struct Editor::State {
       }
     };
     join(features.spatial, 1.0);
-    join(features.temporal, options.alpha);
-    join(features.spatiotemporal, options.beta);
+    join(features.temporal, alpha);
+    join(features.spatiotemporal, beta);
     // Per part: its size, and a handle and whether a second one sits elsewhere.
     std::vector<std::size_t> size(vertices, 0);
     std::vector<Index> first_handle(vertices, -1);
@@ -172,6 +175,14 @@ struct Editor::State {
       const std::string held = first_handle[v] < 0 ? "no handle" : "handles at one place only";
       const std::string span = " over frames " + std::to_string(first_frame) + ".." + std::to_string(last_frame);
       const std::string fix = "pin or drag at least two of its vertices at different places";
+      if (alpha <= 0 && beta <= 0 && clip().sample_count() > 1) {
+        // Nothing ties the samples together in time: each sample's formation floats on its own.
+        throw NumericalError(std::string("the system of ") + step + " is singular: " + alpha_key + " and " + beta_key +
+                             " are 0, so no feature ties one sample to the next and every sample's formation needs "
+                             "its own handles; agent" + std::string(agents.size() > 1 ? "s " : " ") + list.str() + span +
+                             " " + (first_handle[v] < 0 ? "have no handle" : "have handles at one place only") +
+                             ": give " + alpha_key + " or " + beta_key + " a positive weight");
+      }
       if (size[v] == vertices) {
         throw NumericalError("the system is singular: the clip holds " + held +
                              ", so the group's position, rotation and scale are free: " + fix);
@@ -185,7 +196,11 @@ struct Editor::State {
 
   void apply(ResolvedRequest resolved, const Request& from) {
     if (!has_request || resolved.handle_vertices != current.handle_vertices) {
-      check_determined(resolved.handle_vertices);
+      check_determined(resolved.handle_vertices, options.alpha, options.beta, "step 1", "weights.alpha", "weights.beta");
+      if (options.scale_compensation) {
+        check_determined(resolved.handle_vertices, options.alpha_prime, options.beta_prime, "step 2 (scale compensation)",
+                         "weights.alpha_prime", "weights.beta_prime");
+      }
       const auto pinned = resolved.pinned_unknowns();
       step1_solver.set_pinned(pinned);
       if (options.scale_compensation) step2_solver.set_pinned(pinned);
