@@ -15,6 +15,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <string>
+
 using namespace throng;
 using namespace throng::collide;
 
@@ -41,15 +44,18 @@ void BM_BroadPhase(benchmark::State& state) {
 }
 BENCHMARK(BM_BroadPhase)->Args({1000, 0})->Args({1000, 1})->Args({5000, 0})->Args({5000, 1})->Unit(benchmark::kMillisecond);
 
-void repair(benchmark::State& state, const scenes::CollideScene& scene) {
+void repair(benchmark::State& state, const scenes::CollideScene& scene, const Options& options = {}) {
   NoProgress quiet;
   Report report;
   for (auto _ : state) {
-    report = resolve_collisions(scene.crowd, scene.obstacles, Options{}, quiet).report;
+    report = resolve_collisions(scene.crowd, scene.obstacles, options, quiet).report;
   }
   state.counters["iterations"] = static_cast<double>(report.iterations);
   state.counters["initial_contacts"] = static_cast<double>(report.initial_pair_contacts + report.initial_obstacle_contacts);
   state.counters["converged"] = report.converged ? 1.0 : 0.0;
+  state.counters["solve_s"] = report.solve_seconds;
+  state.counters["detect_s"] = report.detect_seconds;
+  state.counters["max_speed_ratio"] = report.output_motion.max_speed / std::max(1e-12, report.input_motion.max_speed);
 }
 
 // Figure 8: two groups of 25 (5 × 5) bumping, 450 frames (15 s at 30 fps, the paper's frame count).
@@ -74,3 +80,15 @@ void BM_Crossing(benchmark::State& state) {
 BENCHMARK(BM_Crossing)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
+
+// The two implementations of the per-trajectory constrained solve (collide.h "Solver"): arg 0 banded (the
+// product's), 1 throng/linalg's ConstrainedLeastSquares; on the Figure 8 and Figure 9 scenes.
+void BM_TrackMethod(benchmark::State& state) {
+  static const auto bump = scenes::bump(5, 450);
+  static const auto opening = scenes::narrow_opening(61, 1.5, 900);
+  Options options;
+  options.track_method = state.range(0) == 0 ? TrackMethod::banded : TrackMethod::linalg;
+  state.SetLabel(std::string(state.range(1) == 0 ? "figure 8" : "figure 9") + (state.range(0) == 0 ? ", banded" : ", linalg"));
+  repair(state, state.range(1) == 0 ? bump : opening, options);
+}
+BENCHMARK(BM_TrackMethod)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);

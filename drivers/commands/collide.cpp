@@ -6,10 +6,14 @@
 // Collisions left at the end (iteration cap, or pinned frames that collide): the output and the report are
 // written, then the command exits 5 (NumericalError) unless allow_remaining. As a `throng run` step the step
 // fails (exit 5, the step writes nothing) unless allow_remaining, which turns it into a warning.
+//
+// Under mpiexec every rank runs the repair (the trajectories' solves are spread over the ranks and gathered,
+// solver/collide), so every rank holds the result; rank 0 alone writes the output and prints the report.
 #include <throng/collide/collide.h>
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/collide_job.h>
+#include <throng/linalg/mpi.h>
 
 #include <cmath>
 #include <memory>
@@ -36,6 +40,10 @@ Collided collide_crowd(const CrowdFile& input, const CollideJob& job, Context& c
   Scene scene = input.scene;
   scene.obstacles.insert(scene.obstacles.end(), job.scene.obstacles.begin(), job.scene.obstacles.end());
   if (job.scene.region) scene.region = job.scene.region;
+  if (scene.region && (scene.region->periodic[0] || scene.region->periodic[1])) {
+    context.warn("collide: the crowd's region is periodic; distances are not wrapped, so pairs across its "
+                 "periodic boundary are not repaired");
+  }
   auto result = std::make_shared<collide::Result>(collide::resolve_collisions(input.motion, scene.obstacles, job.options,
                                                                               context.progress()));
   const collide::Report& r = result->report;
@@ -57,9 +65,17 @@ Collided collide_crowd(const CrowdFile& input, const CollideJob& job, Context& c
   c.report["obstacle_contacts"] = r.obstacle_contacts;
   c.report["stuck_contacts"] = r.stuck_contacts;
   c.report["pushed_points"] = r.constraints;
+  c.report["abandoned_contacts"] = r.abandoned_contacts;
   c.report["moved_agents"] = r.moved_agents;
   c.report["min_pair_gap_m"] = metres(r.min_pair_gap);
   c.report["min_obstacle_gap_m"] = metres(r.min_obstacle_gap);
+  c.report["max_displacement_m"] = r.max_displacement;
+  c.report["max_speed_in_m_s"] = r.input_motion.max_speed;
+  c.report["max_speed_out_m_s"] = r.output_motion.max_speed;
+  c.report["speed_p99_out_m_s"] = r.output_motion.speed_p99;
+  c.report["max_acceleration_in_m_s2"] = r.input_motion.max_acceleration;
+  c.report["max_acceleration_out_m_s2"] = r.output_motion.max_acceleration;
+  c.report["ranks"] = r.ranks;
   c.report["detect_s"] = r.detect_seconds;
   c.report["solve_s"] = r.solve_seconds;
   return c;
@@ -94,17 +110,21 @@ class CollideCommand final : public Command {
     check_distinct(input_, output_);
     if (!job_path_.empty()) check_distinct(job_path_, output_);
     context.limit_threads();
+    { const AtomicOutput probe(output_); }  // a missing or read-only output folder fails now, not after the solve
 
+    const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
     const CrowdFile input = read_crowd_file(input_);
     Collided c = collide_crowd(input, parsed, context);
     std::vector<std::string> inputs{input_.string()};
     if (!job_path_.empty()) inputs.push_back(job_path_.string());
     c.crowd.provenance = context.provenance(effective, inputs, {&input.provenance});
-    write_crowd_file(output_, c.crowd, c.extra);
-    Report r;
-    r["output"] = output_.string();
-    r.update(c.report);
-    context.print(r);
+    if (writer) {
+      write_crowd_file(output_, c.crowd, c.extra);
+      Report r;
+      r["output"] = output_.string();
+      r.update(c.report);
+      context.print(r);
+    }
     finish(c.result, parsed, context);
   }
 

@@ -13,10 +13,15 @@ void bind(OptionBinder& b, CollideJob& job) {
   b.field("push_fraction", o.push_fraction, Range{0.0, 1.0, true, false});
   b.field("max_iterations", o.max_iterations, Range{1, 1e9});
   b.field("spread", o.spread, Range{1.0, 1e6});
+  b.field("velocity_weight", o.velocity_weight, Range::non_negative());
   b.choice("obstacle_pull", o.obstacle_pull,
            {{"sideways", collide::ObstaclePull::sideways}, {"nearest", collide::ObstaclePull::nearest}});
+  b.choice("pair_push", o.pair_push, {{"sideways", collide::PairPush::sideways}, {"apart", collide::PairPush::apart}});
   b.field("pin_ends", o.pin_ends);
   b.field("min_feature_length", o.min_feature_length, Range::positive());
+  b.field("max_displacement", o.max_displacement, Range::positive());
+  b.field("contact_patience", o.contact_patience, Range{1, 1e9});
+  b.field("stall_iterations", o.stall_iterations, Range{1, 1e9});
   b.field("allow_remaining", job.allow_remaining);
 }
 
@@ -32,6 +37,15 @@ CollideJob read_collide_job(const ConfigNode& job) {
     for (const ConfigNode& id : ids->elements()) out.options.fixed_agents.push_back(id.as_int());
   }
   out.scene = read_scene(job);
+  // Distances are not wrapped across periodic boundaries: a periodic region would be repaired wrongly near
+  // its edges, so it is refused rather than ignored.
+  if (out.scene.region) {
+    const auto& periodic = out.scene.region->periodic;
+    if (periodic[0] || periodic[1] || periodic[2]) {
+      job.at("region").fail("collide does not support periodic regions (pairs across a periodic boundary would "
+                            "not be seen); give periodic: [false, false, false] or leave the region out");
+    }
+  }
   job.finish();
   return out;
 }
@@ -62,6 +76,12 @@ void write_collide_data(const h5::Group& throng_parameters, const collide::Repor
   count("initial_obstacle_contacts", r.initial_obstacle_contacts);
   count("constraints", r.constraints);
   count("moved_agents", r.moved_agents);
+  count("abandoned_contacts", r.abandoned_contacts);
+  g.set_attribute("max_displacement", r.max_displacement);
+  g.set_attribute("input_max_speed", r.input_motion.max_speed);
+  g.set_attribute("output_max_speed", r.output_motion.max_speed);
+  g.set_attribute("input_max_acceleration", r.input_motion.max_acceleration);
+  g.set_attribute("output_max_acceleration", r.output_motion.max_acceleration);
   g.set_attribute("min_pair_gap", r.min_pair_gap);
   g.set_attribute("min_obstacle_gap", r.min_obstacle_gap);
   g.set_attribute("converged", static_cast<std::int64_t>(r.converged ? 1 : 0));

@@ -26,6 +26,7 @@ bool has_segment(const CrowdMotion& crowd, std::size_t interval, std::size_t age
 struct IntervalPairs {
   std::vector<PairContact> contacts;
   double min_gap = std::numeric_limits<double>::infinity();
+  bool record = true;  // false: only the smallest gap (smallest_gaps)
 };
 
 // The narrow phase of one pair over one interval, recording a contact when the clearance is violated.
@@ -35,7 +36,7 @@ void examine(const CrowdMotion& crowd, std::size_t interval, std::size_t a, std:
   const double radii = crowd.radii[a] + crowd.radii[b];
   out.min_gap = std::min(out.min_gap, approach.distance - radii);
   const double clearance = radii + margin;
-  if (approach.distance < clearance) {
+  if (out.record && approach.distance < clearance) {
     out.contacts.push_back({a, b, interval, approach.s, approach.distance, clearance, approach.offset});
   }
 }
@@ -121,7 +122,7 @@ std::vector<PairContact> gather_pairs(std::vector<IntervalPairs>& per_interval) 
 // Obstacle contacts of one agent, by (obstacle, interval), and its smallest gap.
 void agent_obstacles(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles,
                      const std::vector<std::vector<Eigen::AlignedBox2d>>& obstacle_bounds, std::size_t agent, double margin,
-                     std::vector<ObstacleContact>& out, double& min_gap) {
+                     std::vector<ObstacleContact>* out, double& min_gap) {
   const double r = crowd.radii[agent];
   const double clearance = r + margin;
   for (std::size_t o = 0; o < obstacles.size(); ++o) {
@@ -133,7 +134,7 @@ void agent_obstacles(const CrowdMotion& crowd, const std::vector<Obstacle>& obst
       if (lo.x() > box.max().x() || box.min().x() > hi.x() || lo.y() > box.max().y() || box.min().y() > hi.y()) continue;
       const Penetration p = deepest_penetration(obstacles[o], p0, p1, crowd.times[i], crowd.times[i + 1]);
       min_gap = std::min(min_gap, p.signed_distance - r);
-      if (p.signed_distance < clearance) out.push_back({agent, o, i, p.s, p.signed_distance, clearance});
+      if (out != nullptr && p.signed_distance < clearance) out->push_back({agent, o, i, p.s, p.signed_distance, clearance});
     }
   }
 }
@@ -167,13 +168,38 @@ Contacts find_contacts(const CrowdMotion& crowd, const std::vector<Obstacle>& ob
     std::vector<double> gaps(n, std::numeric_limits<double>::infinity());
     parallel_for(n, 8, [&](std::size_t begin, std::size_t end) {
       for (std::size_t a = begin; a < end; ++a) {
-        if (agents.empty() || agents[a] != 0) agent_obstacles(crowd, obstacles, bounds, a, margin, per_agent[a], gaps[a]);
+        if (agents.empty() || agents[a] != 0) agent_obstacles(crowd, obstacles, bounds, a, margin, &per_agent[a], gaps[a]);
       }
     });
     for (std::size_t a = 0; a < n; ++a) {
       out.obstacles.insert(out.obstacles.end(), per_agent[a].begin(), per_agent[a].end());
       out.min_obstacle_gap = std::min(out.min_obstacle_gap, gaps[a]);
     }
+  }
+  return out;
+}
+
+Gaps smallest_gaps(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, double reach) {
+  Gaps out;
+  const std::size_t intervals = crowd.frame_count() > 0 ? crowd.frame_count() - 1 : 0;
+  std::vector<IntervalPairs> per_interval(intervals);
+  parallel_for(intervals, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      per_interval[i].record = false;
+      grid_interval(crowd, i, reach, {}, per_interval[i]);
+    }
+  });
+  for (const auto& found : per_interval) out.pair = std::min(out.pair, found.min_gap);
+  if (!obstacles.empty()) {
+    std::vector<std::vector<Eigen::AlignedBox2d>> bounds(obstacles.size(), std::vector<Eigen::AlignedBox2d>(intervals));
+    for (std::size_t o = 0; o < obstacles.size(); ++o) {
+      for (std::size_t i = 0; i < intervals; ++i) bounds[o][i] = bounds_over(obstacles[o], crowd.times[i], crowd.times[i + 1]);
+    }
+    std::vector<double> gaps(crowd.agent_count(), std::numeric_limits<double>::infinity());
+    parallel_for(crowd.agent_count(), 8, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t a = begin; a < end; ++a) agent_obstacles(crowd, obstacles, bounds, a, reach, nullptr, gaps[a]);
+    });
+    for (double g : gaps) out.obstacle = std::min(out.obstacle, g);
   }
   return out;
 }

@@ -107,6 +107,17 @@ Penetration local(const ConvexPolygon& polygon, const Vec& p0, const Vec& p1) {
   return outside;
 }
 
+// dθ/dt of the obstacle's pose at `time` (the angle is interpolated linearly between keys, unwrapped).
+double angular_rate(const Obstacle& obstacle, double time) {
+  const auto& keys = obstacle.motion;
+  for (std::size_t k = 0; k + 1 < keys.size(); ++k) {
+    if (time >= keys[k].time && time <= keys[k + 1].time && keys[k + 1].time > keys[k].time) {
+      return (keys[k + 1].angle - keys[k].angle) / (keys[k + 1].time - keys[k].time);
+    }
+  }
+  return 0.0;
+}
+
 }  // namespace
 
 Approach closest_approach(const Vec& a0, const Vec& a1, const Vec& b0, const Vec& b1) {
@@ -127,7 +138,8 @@ Penetration deepest_penetration(const Shape& shape, const Vec& p0, const Vec& p1
 }
 
 Penetration deepest_penetration(const Obstacle& obstacle, const Vec& p0, const Vec& p1, double t0, double t1,
-                                int rotation_pieces) {
+                                double chord_tolerance) {
+  constexpr int max_chords = 4096;
   if (!obstacle.is_moving()) return deepest_penetration(obstacle.shape, p0, p1);
   // Cut [t0, t1] at the pose keys: between two cuts the pose moves linearly.
   std::vector<double> cuts{0.0};
@@ -145,12 +157,29 @@ Penetration deepest_penetration(const Obstacle& obstacle, const Vec& p0, const V
   for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
     const double sa = cuts[c], sb = cuts[c + 1];
     if (sb <= sa) continue;
-    const int pieces = angle(sa) == angle(sb) ? 1 : std::max(1, rotation_pieces);
+    int pieces = 1;
+    double curvature = 0.0;  // bound on |q''| of the local path q(s) = R(−θ(s)) (p(s) − c(s)) over the cut
+    const double turn = angle(sb) - angle(sa);
+    if (turn != 0.0) {
+      // θ, p and c are linear in s here: with u = p − c (linear, u' = u1) and ω = θ', q'' = R(−θ)(−2ωJu1 − ω²u),
+      // so |q''| ≤ 2|ω||u1| + ω² max|u| (max at an end: |u| is convex). A chord of length h in s is within
+      // h²|q''|/8 of the path.
+      const double omega = angular_rate(obstacle, t0 + 0.5 * (sa + sb) * (t1 - t0)) * (t1 - t0);  // per unit s
+      const Vec ua = point(sa) - pose_at(obstacle, t0 + sa * (t1 - t0)).translation();
+      const Vec ub = point(sb) - pose_at(obstacle, t0 + sb * (t1 - t0)).translation();
+      const Vec u1 = (ub - ua) / (sb - sa);
+      curvature = 2.0 * std::abs(omega) * u1.norm() + omega * omega * std::max(ua.norm(), ub.norm());
+      const double needed = std::ceil((sb - sa) * std::sqrt(curvature / (8.0 * chord_tolerance)));
+      pieces = static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(max_chords)));
+    }
+    const double h = (sb - sa) / pieces;
+    const double chord_error = h * h * curvature / 8.0;
     for (int k = 0; k < pieces; ++k) {
-      const double u0 = sa + (sb - sa) * k / pieces, u1 = sa + (sb - sa) * (k + 1) / pieces;
+      const double u0 = sa + h * k, u1 = k + 1 == pieces ? sb : sa + h * (k + 1);
       const Penetration piece = deepest_penetration(obstacle.shape, to_local(u0), to_local(u1));
       const double s = u0 + piece.s * (u1 - u0);
-      if (piece.signed_distance < best.signed_distance) best = {s, piece.signed_distance};
+      const double value = piece.signed_distance - chord_error;  // never above the true minimum (1-Lipschitz)
+      if (value < best.signed_distance) best = {s, value};
     }
   }
   return best;

@@ -1,14 +1,16 @@
-// The repair loop of collide.h: detect, choose disjoint contacts, push, deform each touched trajectory.
+// The repair loop of collide.h: detect, choose disjoint pushable contacts, push, deform each touched trajectory.
 #include "track_solver.h"
 
 #include <throng/collide/collide.h>
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
+#include <throng/linalg/mpi.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <tuple>
@@ -18,28 +20,42 @@ namespace {
 
 using Vec = Eigen::Vector2d;
 using Clock = std::chrono::steady_clock;
+using Displacement = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// A run of consecutive present frames of one agent, and its solver (made when first pushed).
+// One contact interval across iterations: (kind, agent or a, b or obstacle, interval).
+using ContactKey = std::tuple<int, std::size_t, std::size_t, std::size_t>;
+
+// A run of consecutive present frames of one agent, and its solver (made when first pushed, on the rank that
+// solves the track).
 struct Track {
   std::size_t agent = 0, first = 0, length = 0;
   std::vector<char> pinned;
   std::unique_ptr<TrackSolver> solver;
   std::vector<PointConstraint> constraints;  // this iteration's
+  std::vector<ContactKey> pushed_by;         // the contacts behind them
+};
+
+// How pushing one contact interval has gone.
+struct ContactHistory {
+  double best_deficit = std::numeric_limits<double>::infinity();
+  std::size_t pushes_since_best = 0;
+  bool abandoned = false;
 };
 
 class Repair {
  public:
   Repair(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options)
-      : crowd_(crowd), obstacles_(obstacles), options_(options), frames_(crowd.frame_count()), agents_(crowd.agent_count()) {
+      : input_(crowd), crowd_(crowd), obstacles_(obstacles), options_(options), frames_(crowd.frame_count()),
+        agents_(crowd.agent_count()), ranks_(mpi::size()), rank_(mpi::rank()) {
     make_tracks();
-    factorizations_.assign(tracks_.size(), 0);
   }
 
   Result run(Progress& progress) {
     Result result;
     Report& report = result.report;
+    report.ranks = ranks_;
     auto start = Clock::now();
     Contacts contacts = find_contacts(crowd_, obstacles_, options_.margin);
     report.detect_seconds += seconds_since(start);
@@ -48,6 +64,7 @@ class Repair {
     const double initial = std::max<double>(1.0, static_cast<double>(contacts.size()));
     double fraction = 0.0;
     std::vector<char> moved_ever(agents_, 0);
+    std::size_t fewest = std::numeric_limits<std::size_t>::max(), fewest_at = 0;
     report.stop_reason = "converged";
     while (contacts.size() > 0) {
       if (report.iterations >= options_.max_iterations) {
@@ -55,9 +72,21 @@ class Repair {
         break;
       }
       std::vector<char> moved(agents_, 0);
-      const std::size_t taken = choose(contacts, moved);
+      std::size_t pushable = 0;
+      const std::size_t taken = choose(contacts, moved, pushable);
       if (taken == 0) {
-        report.stop_reason = "only stuck contacts left";
+        report.stop_reason = "only stuck or abandoned contacts left";
+        break;
+      }
+      if (pushable < fewest) {
+        fewest = pushable;
+        fewest_at = report.iterations;
+      } else if (report.iterations - fewest_at >= options_.stall_iterations) {
+        for (Track& t : tracks_) {
+          t.constraints.clear();
+          t.pushed_by.clear();
+        }
+        report.stop_reason = "no progress";
         break;
       }
       report.constraints += taken;
@@ -77,16 +106,20 @@ class Repair {
     // The final state, from scratch.
     start = Clock::now();
     const Contacts final_contacts = find_contacts(crowd_, obstacles_, options_.margin);
-    report.detect_seconds += seconds_since(start);
     report.pair_contacts = final_contacts.pair_count();
     report.obstacle_contacts = final_contacts.obstacle_count();
-    report.min_pair_gap = final_contacts.min_pair_gap;
-    report.min_obstacle_gap = final_contacts.min_obstacle_gap;
     report.converged = final_contacts.size() == 0;
     if (report.converged) report.stop_reason = "converged";
-    report.stuck_contacts = final_contacts.size() == 0 ? 0 : count_stuck(final_contacts);
+    classify_remaining(final_contacts, report);
+    const Gaps gaps = exact_gaps();
+    report.min_pair_gap = gaps.pair;
+    report.min_obstacle_gap = gaps.obstacle;
+    report.detect_seconds += seconds_since(start);
     report.moved_agents = static_cast<std::size_t>(std::count(moved_ever.begin(), moved_ever.end(), 1));
-    for (char f : factorizations_) report.factorizations += f;
+    report.factorizations = static_cast<int>(ranks_ > 1 ? mpi::sum(factorizations_) : factorizations_);
+    report.max_displacement = largest_displacement();
+    report.input_motion = motion_stats(input_);
+    report.output_motion = motion_stats(crowd_);
     result.crowd = crowd_;
     if (report.moved_agents > 0) result.crowd.velocities.clear();
     progress.update(1.0, "collide");
@@ -133,6 +166,15 @@ class Repair {
     const double* p = crowd_.positions.data() + crowd_.index(frame, agent);
     return {p[0], p[1]};
   }
+  Vec offset_from_input(std::size_t frame, std::size_t agent) const {
+    const double *p = crowd_.positions.data() + crowd_.index(frame, agent), *q = input_.positions.data() + input_.index(frame, agent);
+    return {p[0] - q[0], p[1] - q[1]};
+  }
+
+  bool pinned(std::size_t agent, std::size_t frame) const {
+    const Track& t = tracks_[static_cast<std::size_t>(track_of_[agent * frames_ + frame])];
+    return t.pinned[frame - t.first] != 0;
+  }
 
   // How the point at fraction s of interval i of an agent moves: the constraint's vertices and coefficients, and
   // the factor its displacement is scaled by; movable = false when no free vertex carries it.
@@ -166,6 +208,31 @@ class Repair {
     return m;
   }
 
+  // --- stuck contacts: the clearance is violated at an end frame where every agent involved is pinned ---
+  bool stuck(const PairContact& c) const {
+    if (!mover(c.a, c.interval, c.s).movable && !mover(c.b, c.interval, c.s).movable) return true;
+    for (std::size_t f : {c.interval, c.interval + 1}) {
+      if (pinned(c.a, f) && pinned(c.b, f) && (at(f, c.a) - at(f, c.b)).norm() < c.clearance) return true;
+    }
+    return false;
+  }
+  bool stuck(const ObstacleContact& c) const {
+    if (!mover(c.agent, c.interval, c.s).movable) return true;
+    for (std::size_t f : {c.interval, c.interval + 1}) {
+      if (pinned(c.agent, f) &&
+          distance_to(obstacles_[c.obstacle], at(f, c.agent), crowd_.times[f]).signed_distance < c.clearance) {
+        return true;
+      }
+    }
+    return false;
+  }
+  static ContactKey key(const PairContact& c) { return {0, c.a, c.b, c.interval}; }
+  static ContactKey key(const ObstacleContact& c) { return {1, c.agent, c.obstacle, c.interval}; }
+  bool abandoned(const ContactKey& k) const {
+    const auto it = history_.find(k);
+    return it != history_.end() && it->second.abandoned;
+  }
+
   // --- choosing this iteration's pushes ---
   struct Candidate {
     double deficit;
@@ -173,10 +240,9 @@ class Repair {
     std::size_t index;
   };
 
-  bool claim(std::size_t agent, std::size_t interval) {
+  bool claimable(std::size_t agent, std::size_t interval) const {
     const std::size_t v0 = agent * frames_ + interval;
-    if (used_[v0] != 0 || used_[v0 + 1] != 0) return false;
-    return true;
+    return used_[v0] == 0 && used_[v0 + 1] == 0;
   }
   void mark(std::size_t agent, std::size_t interval) {
     const std::size_t v0 = agent * frames_ + interval;
@@ -184,18 +250,59 @@ class Repair {
     touched_.push_back(v0);
   }
 
-  void push(const Mover& m, const Vec& displacement, std::vector<char>& moved) {
+  // False when the push would carry a vertex of the mover more than max_displacement from its input.
+  bool within_bound(const Mover& m, std::size_t agent, const Vec& displacement) const {
+    const Track& t = tracks_[static_cast<std::size_t>(m.track)];
+    const Vec step = m.scale * displacement;
+    for (int v : {m.constraint.v0, m.constraint.v1}) {
+      if ((offset_from_input(t.first + static_cast<std::size_t>(v), agent) + step).norm() > options_.max_displacement) return false;
+    }
+    return true;
+  }
+
+  void push(const Mover& m, const Vec& displacement, const ContactKey& by, std::vector<char>& moved) {
     PointConstraint c = m.constraint;
     c.target = m.scale * displacement;
     Track& t = tracks_[static_cast<std::size_t>(m.track)];
     t.constraints.push_back(c);
+    t.pushed_by.push_back(by);
     moved[t.agent] = 1;
   }
 
+  // Records a push of contact `k` at `deficit`; false (and the contact abandoned) when it has had
+  // contact_patience pushes without a new smallest deficit.
+  bool progressing(const ContactKey& k, double deficit, double clearance) {
+    ContactHistory& h = history_[k];
+    if (deficit < h.best_deficit - 1e-9 * clearance) {
+      h.best_deficit = deficit;
+      h.pushes_since_best = 0;
+      return true;
+    }
+    if (++h.pushes_since_best >= options_.contact_patience) {
+      h.abandoned = true;
+      return false;
+    }
+    return true;
+  }
+  void abandon(const ContactKey& k) { history_[k].abandoned = true; }
+
+  // The direction agent a is pushed (b the opposite way). `apart`: along their offset at the moment of closest
+  // approach. `sideways`: the part of that offset across their relative motion over the interval — for an
+  // interval that ends before (or starts after) their closest moment, the offset also points along the motion,
+  // and pushing along it would only shift the two in time (one held back, then rushed past); across it, they
+  // sidestep. Relative motion (nearly) nil or offset (nearly) along it: the offset, or when that is zero, the
+  // left of a's relative motion (else +x).
   Vec pair_direction(const PairContact& c) const {
-    if (c.distance > 1e-12) return c.offset / c.distance;
     const Vec relative = (at(c.interval + 1, c.a) - at(c.interval + 1, c.b)) - (at(c.interval, c.a) - at(c.interval, c.b));
-    if (relative.norm() > 1e-12) return Vec(-relative.y(), relative.x()) / relative.norm();
+    const double speed = relative.norm();
+    if (options_.pair_push == PairPush::sideways && speed > 1e-9 && c.distance > 1e-12) {
+      const Vec along = relative / speed;
+      const Vec across = c.offset - c.offset.dot(along) * along;
+      if (across.norm() > 1e-6 * c.distance) return across.normalized();
+      return Vec(-along.y(), along.x());
+    }
+    if (c.distance > 1e-12) return c.offset / c.distance;
+    if (speed > 1e-12) return Vec(-relative.y(), relative.x()) / speed;
     return {1.0, 0.0};
   }
 
@@ -233,15 +340,20 @@ class Repair {
     return (c.clearance - d.signed_distance + extra) * d.normal;
   }
 
-  std::size_t choose(const Contacts& contacts, std::vector<char>& moved) {
+  // Takes the pushable contacts deepest first, each whose vertices no taken contact uses; `pushable` counts the
+  // contacts neither stuck nor abandoned. Returns how many were taken.
+  std::size_t choose(const Contacts& contacts, std::vector<char>& moved, std::size_t& pushable) {
     std::vector<Candidate> order;
     order.reserve(contacts.size());
     for (std::size_t k = 0; k < contacts.pairs.size(); ++k) {
-      order.push_back({contacts.pairs[k].clearance - contacts.pairs[k].distance, 0, k});
+      const PairContact& c = contacts.pairs[k];
+      if (!abandoned(key(c)) && !stuck(c)) order.push_back({c.clearance - c.distance, 0, k});
     }
     for (std::size_t k = 0; k < contacts.obstacles.size(); ++k) {
-      order.push_back({contacts.obstacles[k].clearance - contacts.obstacles[k].signed_distance, 1, k});
+      const ObstacleContact& c = contacts.obstacles[k];
+      if (!abandoned(key(c)) && !stuck(c)) order.push_back({c.clearance - c.signed_distance, 1, k});
     }
+    pushable = order.size();
     std::sort(order.begin(), order.end(), [](const Candidate& x, const Candidate& y) {
       return std::tie(y.deficit, x.kind, x.index) < std::tie(x.deficit, y.kind, y.index);
     });
@@ -250,22 +362,32 @@ class Repair {
     for (const Candidate& candidate : order) {
       if (candidate.kind == 0) {
         const PairContact& c = contacts.pairs[candidate.index];
+        if (!claimable(c.a, c.interval) || !claimable(c.b, c.interval)) continue;
         const Mover ma = mover(c.a, c.interval, c.s), mb = mover(c.b, c.interval, c.s);
-        if (!ma.movable && !mb.movable) continue;
-        if (!claim(c.a, c.interval) || !claim(c.b, c.interval)) continue;
-        mark(c.a, c.interval);
-        mark(c.b, c.interval);
         const Vec n = pair_direction(c);
         const double half = 0.5 * options_.push_fraction * c.clearance;
-        const double share_a = mb.movable ? half : 2 * half, share_b = ma.movable ? half : 2 * half;
-        if (ma.movable) push(ma, share_a * n, moved);
-        if (mb.movable) push(mb, -share_b * n, moved);
+        const Vec push_a = (mb.movable ? half : 2 * half) * n, push_b = -(ma.movable ? half : 2 * half) * n;
+        if ((ma.movable && !within_bound(ma, c.a, push_a)) || (mb.movable && !within_bound(mb, c.b, push_b))) {
+          abandon(key(c));
+          continue;
+        }
+        if (!progressing(key(c), candidate.deficit, c.clearance)) continue;
+        mark(c.a, c.interval);
+        mark(c.b, c.interval);
+        if (ma.movable) push(ma, push_a, key(c), moved);
+        if (mb.movable) push(mb, push_b, key(c), moved);
       } else {
         const ObstacleContact& c = contacts.obstacles[candidate.index];
+        if (!claimable(c.agent, c.interval)) continue;
         const Mover m = mover(c.agent, c.interval, c.s);
-        if (!m.movable || !claim(c.agent, c.interval)) continue;
+        const Vec displacement = obstacle_displacement(c);
+        if (!within_bound(m, c.agent, displacement)) {
+          abandon(key(c));
+          continue;
+        }
+        if (!progressing(key(c), candidate.deficit, c.clearance)) continue;
         mark(c.agent, c.interval);
-        push(m, obstacle_displacement(c), moved);
+        push(m, displacement, key(c), moved);
       }
       ++taken;
     }
@@ -274,57 +396,167 @@ class Repair {
     return taken;
   }
 
-  // Distinct pairs (and agent–obstacle pairs) none of whose contacts has a free vertex to move.
-  std::size_t count_stuck(const Contacts& contacts) const {
-    std::size_t stuck = 0;
+  // Distinct pairs (and agent–obstacle pairs) left: stuck when every contact of theirs is stuck, abandoned when
+  // none is pushable and one was abandoned.
+  void classify_remaining(const Contacts& contacts, Report& report) const {
+    auto classify = [&](bool all_stuck, bool any_pushable) {
+      if (all_stuck) {
+        ++report.stuck_contacts;
+      } else if (!any_pushable) {
+        ++report.abandoned_contacts;
+      }
+    };
     for (std::size_t k = 0; k < contacts.pairs.size();) {
       const PairContact& first = contacts.pairs[k];
-      bool movable = false;
+      bool all_stuck = true, any_pushable = false;
       for (; k < contacts.pairs.size() && contacts.pairs[k].a == first.a && contacts.pairs[k].b == first.b; ++k) {
         const PairContact& c = contacts.pairs[k];
-        movable = movable || mover(c.a, c.interval, c.s).movable || mover(c.b, c.interval, c.s).movable;
+        const bool is_stuck = stuck(c);
+        all_stuck = all_stuck && is_stuck;
+        any_pushable = any_pushable || (!is_stuck && !abandoned(key(c)));
       }
-      stuck += !movable;
+      classify(all_stuck, any_pushable);
     }
     for (std::size_t k = 0; k < contacts.obstacles.size();) {
       const ObstacleContact& first = contacts.obstacles[k];
-      bool movable = false;
+      bool all_stuck = true, any_pushable = false;
       for (; k < contacts.obstacles.size() && contacts.obstacles[k].agent == first.agent &&
              contacts.obstacles[k].obstacle == first.obstacle;
            ++k) {
         const ObstacleContact& c = contacts.obstacles[k];
-        movable = movable || mover(c.agent, c.interval, c.s).movable;
+        const bool is_stuck = stuck(c);
+        all_stuck = all_stuck && is_stuck;
+        any_pushable = any_pushable || (!is_stuck && !abandoned(key(c)));
       }
-      stuck += !movable;
+      classify(all_stuck, any_pushable);
     }
-    return stuck;
+  }
+
+  // The true smallest gaps: widened passes until the smallest is within the pass's reach (at most 16 m).
+  Gaps exact_gaps() const {
+    Gaps out;
+    bool pair_done = false, obstacle_done = obstacles_.empty();
+    for (double reach : {std::max(1.0, options_.margin), 4.0, 16.0}) {
+      if (pair_done && obstacle_done) break;
+      if (reach < options_.margin) continue;
+      const Gaps g = smallest_gaps(crowd_, obstacle_done ? std::vector<Obstacle>{} : obstacles_, reach);
+      if (!pair_done && g.pair <= reach) {
+        out.pair = g.pair;
+        pair_done = true;
+      }
+      if (!obstacle_done && g.obstacle <= reach) {
+        out.obstacle = g.obstacle;
+        obstacle_done = true;
+      }
+    }
+    return out;
+  }
+
+  double largest_displacement() const {
+    double largest = 0.0;
+    for (std::size_t f = 0; f < frames_; ++f) {
+      for (std::size_t a = 0; a < agents_; ++a) {
+        if (crowd_.present(f, a)) largest = std::max(largest, offset_from_input(f, a).norm());
+      }
+    }
+    return largest;
   }
 
   // --- deforming ---
+  // Each touched track is solved on rank (track index) mod ranks, which keeps its factorisation for the run; the
+  // displacements are then gathered, so every rank applies every track's displacement, in track order.
   void deform() {
     std::vector<std::size_t> busy;
     for (std::size_t t = 0; t < tracks_.size(); ++t) {
       if (!tracks_[t].constraints.empty()) busy.push_back(t);
     }
-    std::vector<std::string> failures(busy.size());
-    parallel_for(busy.size(), 1, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k) {
+    std::vector<std::size_t> mine;  // positions in `busy` of the tracks this rank solves: track index mod ranks
+    for (std::size_t k = 0; k < busy.size(); ++k) {
+      if (static_cast<int>(busy[k] % static_cast<std::size_t>(ranks_)) == rank_) mine.push_back(k);
+    }
+    std::vector<Displacement> displacement(busy.size());
+    std::vector<std::string> failures(mine.size());
+    std::vector<char> made(mine.size(), 0);
+    parallel_for(mine.size(), 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t j = begin; j < end; ++j) {
+        const std::size_t k = mine[j];
         Track& t = tracks_[busy[k]];
-        if (!t.solver) {
-          Eigen::Matrix<double, Eigen::Dynamic, 2> original(static_cast<Eigen::Index>(t.length), 2);
-          for (std::size_t j = 0; j < t.length; ++j) original.row(static_cast<Eigen::Index>(j)) = at(t.first + j, t.agent).transpose();
-          t.solver = std::make_unique<TrackSolver>(original, t.pinned, options_.spread, options_.min_feature_length);
-          ++factorizations_[busy[k]];
+        try {
+          if (!t.solver) {
+            Displacement original(static_cast<Eigen::Index>(t.length), 2);
+            for (std::size_t v = 0; v < t.length; ++v) {
+              original.row(static_cast<Eigen::Index>(v)) = input_.position(t.first + v, t.agent).head<2>().transpose();
+            }
+            t.solver = make_track_solver(original, t.pinned, options_);
+            made[j] = 1;
+          }
+          displacement[k] = t.solver->solve(t.constraints);
+        } catch (const std::exception& e) {
+          failures[j] = e.what();
         }
-        const Eigen::Matrix<double, Eigen::Dynamic, 2> d = t.solver->solve(t.constraints);
+      }
+    });
+    for (char m : made) factorizations_ += m;
+    std::string failure;
+    for (const std::string& f : failures) {
+      if (!f.empty()) {
+        failure = f;
+        break;
+      }
+    }
+    if (ranks_ > 1) gather(busy, mine, displacement, failure);
+    if (!failure.empty()) throw NumericalError(failure);
+    // A deformation that would carry any vertex beyond max_displacement is dropped, and the contacts that asked
+    // for it abandoned: the bound holds for every vertex, not only the pushed ones.
+    for (std::size_t k = 0; k < busy.size(); ++k) {
+      Track& t = tracks_[busy[k]];
+      const Displacement& d = displacement[k];
+      bool within = true;
+      for (std::size_t j = 0; j < t.length && within; ++j) {
+        within = (offset_from_input(t.first + j, t.agent) + d.row(static_cast<Eigen::Index>(j)).transpose()).norm() <=
+                 options_.max_displacement;
+      }
+      if (within) {
         for (std::size_t j = 0; j < t.length; ++j) {
           double* p = crowd_.positions.data() + crowd_.index(t.first + j, t.agent);
           p[0] += d(static_cast<Eigen::Index>(j), 0);
           p[1] += d(static_cast<Eigen::Index>(j), 1);
         }
-        t.constraints.clear();
+      } else {
+        for (const ContactKey& by : t.pushed_by) abandon(by);
       }
-    });
+      t.constraints.clear();
+      t.pushed_by.clear();
+    }
+  }
+
+  // Every rank's displacements to every rank. Message: [failed (0/1), then per solved track its position k
+  // among the busy tracks and its 2·length values]. A failure on any rank is raised on every rank.
+  void gather(const std::vector<std::size_t>& busy, const std::vector<std::size_t>& mine,
+              std::vector<Displacement>& displacement, std::string& failure) const {
+    std::vector<double> message{failure.empty() ? 0.0 : 1.0};
+    if (failure.empty()) {
+      for (std::size_t k : mine) {
+        message.push_back(static_cast<double>(k));
+        const Displacement& d = displacement[k];
+        for (Eigen::Index j = 0; j < d.rows(); ++j) message.insert(message.end(), {d(j, 0), d(j, 1)});
+      }
+    }
+    const std::vector<std::vector<double>> all = mpi::all_gather(message);
+    for (std::size_t r = 0; r < all.size(); ++r) {
+      const std::vector<double>& m = all[r];
+      if (m.at(0) != 0.0) {
+        if (failure.empty()) failure = "collide: a trajectory's solve failed on MPI rank " + std::to_string(r);
+        continue;
+      }
+      for (std::size_t pos = 1; pos < m.size();) {
+        const auto k = static_cast<std::size_t>(m[pos++]);
+        const auto length = static_cast<Eigen::Index>(tracks_[busy.at(k)].length);
+        Displacement d(length, 2);
+        for (Eigen::Index j = 0; j < length; ++j, pos += 2) d.row(j) << m.at(pos), m.at(pos + 1);
+        displacement[k] = std::move(d);
+      }
+    }
   }
 
   // Contacts after a deformation: those of unmoved agents stay as they were; the moved agents are searched again.
@@ -346,26 +578,64 @@ class Repair {
     return fresh;
   }
 
+  const CrowdMotion& input_;
   CrowdMotion crowd_;
   const std::vector<Obstacle>& obstacles_;
   Options options_;
   std::size_t frames_, agents_;
+  int ranks_, rank_;
   std::vector<Track> tracks_;
   std::vector<int> track_of_;  // agent * frames + frame → track, −1 when absent
   std::vector<char> used_;     // agent * frames + frame → vertex claimed this iteration
   std::vector<std::size_t> touched_;
-  std::vector<char> factorizations_;  // per track: 1 once its solver exists
+  std::map<ContactKey, ContactHistory> history_;
+  double factorizations_ = 0;  // tracks factorised on this rank
 };
 
 std::string number(double v) {
-  if (!std::isfinite(v)) return "none";
   std::ostringstream s;
   s.precision(4);
   s << v;
   return s.str();
 }
 
+std::string gap(double v) { return std::isfinite(v) ? number(v) + " m" : "none within 16 m"; }
+
 }  // namespace
+
+MotionStats motion_stats(const CrowdMotion& crowd) {
+  std::vector<double> speeds, accelerations;
+  for (std::size_t a = 0; a < crowd.agent_count(); ++a) {
+    bool have_velocity = false;
+    Vec velocity;
+    for (std::size_t f = 0; f + 1 < crowd.frame_count(); ++f) {
+      if (!crowd.present(f, a) || !crowd.present(f + 1, a)) {
+        have_velocity = false;
+        continue;
+      }
+      const double dt = crowd.times[f + 1] - crowd.times[f];
+      const Vec v = (crowd.position(f + 1, a).head<2>() - crowd.position(f, a).head<2>()) / dt;
+      speeds.push_back(v.norm());
+      if (have_velocity) {
+        const double mid = 0.5 * (crowd.times[f + 1] - crowd.times[f - 1]);
+        accelerations.push_back((v - velocity).norm() / mid);
+      }
+      velocity = v;
+      have_velocity = true;
+    }
+  }
+  auto high = [](std::vector<double>& values, double& largest, double& p99) {
+    if (values.empty()) return;
+    const auto k = static_cast<std::ptrdiff_t>(std::floor(0.99 * static_cast<double>(values.size() - 1)));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    p99 = values[static_cast<std::size_t>(k)];
+    largest = *std::max_element(values.begin(), values.end());
+  };
+  MotionStats out;
+  high(speeds, out.max_speed, out.speed_p99);
+  high(accelerations, out.max_acceleration, out.acceleration_p99);
+  return out;
+}
 
 void validate(const Options& o) {
   auto fail = [](const std::string& m) { throw ConfigError(m); };
@@ -376,6 +646,12 @@ void validate(const Options& o) {
   if (!(std::isfinite(o.min_feature_length) && o.min_feature_length > 0)) {
     fail("min_feature_length " + number(o.min_feature_length) + ": expected > 0");
   }
+  if (!(o.max_displacement > 0)) fail("max_displacement " + number(o.max_displacement) + ": expected a length > 0");
+  if (!(std::isfinite(o.velocity_weight) && o.velocity_weight >= 0)) {
+    fail("velocity_weight " + number(o.velocity_weight) + ": expected a weight ≥ 0");
+  }
+  if (o.contact_patience < 1) fail("contact_patience 0: expected at least 1");
+  if (o.stall_iterations < 1) fail("stall_iterations 0: expected at least 1");
 }
 
 Result resolve_collisions(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options,
@@ -393,9 +669,10 @@ std::string summary(const Report& r) {
     s << "no collision left after " << r.iterations << " iterations";
   } else {
     s << r.pair_contacts << " colliding pair(s) and " << r.obstacle_contacts << " obstacle contact(s) remain ("
-      << r.stuck_contacts << " stuck at pinned frames) after " << r.iterations << " iterations (" << r.stop_reason << ")";
+      << r.stuck_contacts << " stuck at pinned frames, " << r.abandoned_contacts << " abandoned) after " << r.iterations
+      << " iterations (" << r.stop_reason << ")";
   }
-  s << "; smallest pair gap " << number(r.min_pair_gap) << " m, smallest obstacle gap " << number(r.min_obstacle_gap) << " m";
+  s << "; smallest pair gap " << gap(r.min_pair_gap) << ", smallest obstacle gap " << gap(r.min_obstacle_gap);
   return s.str();
 }
 

@@ -6,22 +6,26 @@
 // anchor rows with weight (mean temporal weight)/spread⁴ on d. Pinned vertices have d = 0 (eliminated). A point
 // constraint asks Σ_j c_j d_{v_j} = target (2 rows, free vertices only).
 //
-// Solve. With pins at 0 and a zero right-hand side the result is min |A d|²_W subject to C d = t. The constraint
-// rows are added as a stiff penalty: (Q + ρ CᵀC) d = ρ Cᵀ t with Q = AᵀWA on the free unknowns and
-// ρ = 1e7 · max diag(Q), so C d − t is ~1e-7 of the push (checked after every solve: a residual above 1e-5 of
-// the largest target is a NumericalError). Q is banded (a vertex couples with its two neighbours on each side:
-// half-bandwidth 5 in interleaved unknowns) and a constraint couples two neighbouring vertices, inside the band,
-// so every iteration is one banded refactorisation in natural order (Eigen's simplicial Cholesky, no fill, no
-// BLAS) and one solve: O(length) per trajectory however many points it pushes. Measured on the Figure 8 scene
-// (50 agents × 450 frames, ~30 pushed points per trajectory and iteration): throng/linalg's
-// ConstrainedLeastSquares (CHOLMOD supernodal, Schur complement over the constraints) spent 2.1 s in dense BLAS
-// triangular solves, an exact Schur complement on the banded factor 1.1 s (one back-substitution per constraint
-// row); see the report for the penalty's time.
+// Solve: min |A d|²_W subject to C d = t, exactly, through the Schur complement on a factorisation made once:
+//   Q = AᵀWA on the free unknowns is factorised when the track is first pushed (Q = LLᵀ); each solve computes
+//   G = Q⁻¹Cᵀ (one forward and one back substitution per constraint row), S = C G (m × m, dense SPD because
+//   every vertex carries at most one constraint), λ = S⁻¹ t, d = G λ, then one step of iterative refinement
+//   (the residual t − C d through the same S); a residual above 1e-9 of the largest push is a NumericalError.
+// No penalty, so no stiffness to balance against the spread: every spread from 1 frame up works (the anchor is
+// floored at spread 1,000, see collide.h).
+//
+// Two implementations of that one method (TrackMethod): `banded` factorises Q in its natural order as a band
+// (a vertex couples with its two neighbours on each side: half-bandwidth 5 in interleaved unknowns, no fill) and
+// starts each forward substitution at its constraint's first unknown; `linalg` hands the same objective, pins
+// and constraint rows to throng/linalg's ConstrainedLeastSquares (CHOLMOD, Schur complement over the added
+// constraints). They agree to rounding (tests/collide); the measured choice is in collide.h.
 #pragma once
 
-#include <Eigen/Core>
-#include <Eigen/SparseCholesky>
+#include <throng/collide/collide.h>
 
+#include <Eigen/Core>
+
+#include <memory>
 #include <vector>
 
 namespace throng::collide {
@@ -35,23 +39,19 @@ struct PointConstraint {
 
 class TrackSolver {
  public:
-  ///   positions  length by 2: the input trajectory (the features are measured on it)
-  ///   pinned     length flags; at least one vertex must be free
-  TrackSolver(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& positions, const std::vector<char>& pinned,
-              double spread, double min_feature_length);
-
+  virtual ~TrackSolver() = default;
   /// The displacement (length by 2) meeting `constraints` (on free vertices, each vertex in at most one), pins 0.
-  /// Throws NumericalError when the system is not positive definite or the pushes are not met.
-  [[nodiscard]] Eigen::Matrix<double, Eigen::Dynamic, 2> solve(const std::vector<PointConstraint>& constraints);
-
- private:
-  using Sparse = Eigen::SparseMatrix<double>;
-  Eigen::Index length_;
-  std::vector<Eigen::Index> free_of_;     // unknown → free index, −1 when pinned
-  std::vector<Eigen::Index> unknown_of_;  // free index → unknown
-  Sparse Q_;                              // free part of AᵀWA, with the whole band stored (explicit zeros)
-  double stiffness_ = 0.0;                // ρ
-  Eigen::SimplicialLLT<Sparse, Eigen::Lower, Eigen::NaturalOrdering<int>> factor_;
+  /// Throws NumericalError when the pushes cannot be met.
+  [[nodiscard]] virtual Eigen::Matrix<double, Eigen::Dynamic, 2> solve(const std::vector<PointConstraint>& constraints) = 0;
 };
+
+/// Assembles and factorises one track's system (once).
+///   positions  length by 2: the input trajectory (the features are measured on it)
+///   pinned     length flags; at least one vertex must be free
+///   options    spread, velocity_weight, min_feature_length, track_method
+/// Throws NumericalError when the system is not positive definite.
+[[nodiscard]] std::unique_ptr<TrackSolver> make_track_solver(
+    const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& positions, const std::vector<char>& pinned,
+    const Options& options);
 
 }  // namespace throng::collide

@@ -7,12 +7,19 @@
 //   push_fraction: 0.1         # a push separates a pair by this fraction of its clearance (paper: 10 %)
 //   max_iterations: 10000      # solves at most
 //   spread: 15                 # frames over which a push fades along a trajectory (each side), ≥ 1
+//   velocity_weight: 1         # weight of velocity changes against the shape features (0: the paper's energy)
+//   pair_push: sideways        # sideways (across the pair's relative motion) | apart (along their offset: paper)
 //   obstacle_pull: sideways    # sideways (across the agent's motion, the way round) | nearest (nearest boundary)
 //   pin_ends: true             # every trajectory's first and last present frame stays where it is
 //   fixed_agents: [3, 8]       # ids of agents that must not move at all
 //   min_feature_length: 0.05   # ℓ of the temporal feature weights (throng/graph/features.h)
+//   max_displacement: 10       # metres a vertex may move from its input (a push beyond abandons its contact)
+//   contact_patience: 1000     # pushes of one contact without getting shallower before it is abandoned
+//   stall_iterations: 5000     # stop ("no progress") after this many iterations without fewer pushable contacts
 //   allow_remaining: false     # true: collisions left at the end are a warning, not exit 5
 //   obstacles: [...]           # more obstacles, added to the crowd file's own (io/scene_config.h format)
+//   region: {...}              # carried into the output's scene; a periodic region is a ConfigError (distances
+//                              # are not wrapped)
 //
 // Malformed keys and values are ConfigErrors (exit 2) naming the line; an unknown fixed agent is a ConfigError
 // from the solver naming the id.
@@ -41,9 +48,11 @@ struct CollideJob {
 
 /// Writes the report under /parameters/throng/collide:
 ///   history   int64[I]    contacts (colliding frame intervals) after each iteration
-///   attributes: iterations, pair_contacts, obstacle_contacts, stuck_contacts, initial_pair_contacts,
-///               initial_obstacle_contacts, constraints, moved_agents, min_pair_gap, min_obstacle_gap (metres,
-///               +inf when no pair came near), converged (0/1), stop_reason
+///   attributes: iterations, pair_contacts, obstacle_contacts, stuck_contacts, abandoned_contacts,
+///               initial_pair_contacts, initial_obstacle_contacts, constraints, moved_agents, min_pair_gap,
+///               min_obstacle_gap (metres, +inf when nothing within 16 m), max_displacement (m), input_max_speed,
+///               output_max_speed (m/s), input_max_acceleration, output_max_acceleration (m/s²), converged (0/1),
+///               stop_reason
 void write_collide_data(const h5::Group& throng_parameters, const collide::Report& report);
 
 }  // namespace throng

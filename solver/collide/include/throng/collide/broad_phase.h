@@ -71,6 +71,18 @@ enum class BroadPhase {
   all_pairs,  ///< every pair of every interval (reference for tests and benchmarks)
 };
 
+/// Smallest gaps of a crowd (metres): distance − r_a − r_b over pairs, signed distance − r over agents and
+/// obstacles.
+struct Gaps {
+  double pair = std::numeric_limits<double>::infinity();
+  double obstacle = std::numeric_limits<double>::infinity();
+};
+
+/// The smallest gaps of `crowd`, exact whenever they are at most `reach` metres: the grid runs with boxes widened
+/// by `reach` (as for a margin), so every pair and agent–obstacle interval within `reach` of touching is examined.
+/// A value above `reach` is only an upper bound; +∞ when nothing was examined.
+[[nodiscard]] Gaps smallest_gaps(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, double reach);
+
 /// Finds every contact of `crowd` (and with `obstacles`) for clearance margin `margin` (metres, ≥ 0).
 /// `agents`, when not empty, restricts the search to pairs with at least one agent flagged (and obstacle contacts
 /// to flagged agents): the incremental search after a solve moved only those. Flags are by agent index.
