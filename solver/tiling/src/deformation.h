@@ -28,8 +28,8 @@
 // rotated and fixed parts of l and d. Stitching several instances adds coupling rows E x = e (Eq. 1–3 between
 // instances that deform together, pins and fixed tangents towards instances that stay) through a Schur
 // complement on the members' G: S λ = E x0 − e, S = Σ_k E_k G_k E_kᵀ, x_k = x0_k − G_k E_kᵀ λ. This equals
-// concatenating the members' systems and constraints into one (the paper's "single larger system"), which a
-// test checks, without a factorisation per stitch.
+// concatenating the members' systems and constraints into one (the paper's "single larger system": tests/tiling/
+// test_deformation.cpp solves that KKT system densely and compares), without a factorisation per stitch.
 #pragma once
 
 #include <throng/tiling/options.h>
