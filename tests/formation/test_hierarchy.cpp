@@ -143,3 +143,20 @@ TEST_CASE("without a tree, spectral clustering groups well-separated clusters to
   for (std::size_t k = 0; k < 3; ++k)
     CHECK((r.motion.frame(k * 60).leftCols(2) - p.keyframes[k].positions).cwiseAbs().maxCoeff() <= 1e-12 * 20);
 }
+
+TEST_CASE("without a tree the hierarchy is automatic only beyond auto_group_size, by default 2,000") {
+  // The issue: a tree "from YAML, or built automatically by spectral clustering when not given". Flat up to the
+  // size (so every flat benchmark up to 2,000 stays one group), clustered beyond it, never with 0.
+  CHECK(Options{}.auto_group_size == 2000);
+  Problem p = clustered(5);
+  p.hierarchy.reset();
+  const int n = groups * per_group;
+  Options o;
+  o.auto_group_size = n;  // exactly the size: flat
+  CHECK(animate_formation(p, o).hierarchy.subgroups.empty());
+  o.auto_group_size = n - 1;  // one more than the size: clustered
+  CHECK_FALSE(animate_formation(p, o).hierarchy.subgroups.empty());
+  o.auto_group_size = 0;  // always flat
+  CHECK(animate_formation(p, o).hierarchy.subgroups.empty());
+  CHECK(animate_formation(p, Options{}).hierarchy.subgroups.empty());  // 20 individuals: flat by default
+}

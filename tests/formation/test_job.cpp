@@ -181,6 +181,19 @@ TEST_CASE("hierarchy forms: a tree, sizes, nested and auto and scale edits by gr
     CHECK(job.options.auto_group_size == 3);
     CHECK(effective_formation_job(job)["hierarchy"]["auto"].as<int>() == 3);
   }
+  SECTION("none given: automatic beyond 2,000 individuals; flat: never") {
+    const FormationJob automatic = read_formation_job(yaml(two_keyframes));
+    CHECK_FALSE(automatic.problem.hierarchy);
+    CHECK(automatic.options.auto_group_size == 2000);
+    CHECK(effective_formation_job(automatic)["hierarchy"]["auto"].as<int>() == 2000);
+    const FormationJob flat = read_formation_job(yaml("hierarchy: flat\n" + two_keyframes));
+    CHECK_FALSE(flat.problem.hierarchy);
+    CHECK(flat.options.auto_group_size == 0);
+    const YAML::Node effective = effective_formation_job(flat);
+    CHECK(effective["hierarchy"].as<std::string>() == "flat");
+    CHECK(read_formation_job(ConfigNode(effective, "effective")).options.auto_group_size == 0);  // round trip
+    CHECK_THROWS_AS(read_formation_job(yaml("hierarchy: flatter\n" + two_keyframes)), ConfigError);
+  }
 }
 
 TEST_CASE("keyframes from a crowd at given frames, counting back from the end") {

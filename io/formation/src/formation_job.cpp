@@ -263,8 +263,13 @@ FormationJob read_formation_job(const ConfigNode& job) {
   bind(reader, o);
 
   if (auto h = job.find("hierarchy")) {
-    if (!h->is_map()) h->fail("hierarchy is a mapping: a tree (name, members, groups), {sizes: [...]}, {nested: [...]} or {auto: N}");
-    parsed.problem.hierarchy = read_hierarchy(*h, o);
+    if (h->is_scalar() && h->as_string() == "flat") {
+      o.auto_group_size = 0;
+    } else {
+      if (!h->is_map())
+        h->fail("hierarchy is flat or a mapping: a tree (name, members, groups), {sizes: [...]}, {nested: [...]} or {auto: N}");
+      parsed.problem.hierarchy = read_hierarchy(*h, o);
+    }
     if (parsed.problem.hierarchy) parsed.problem.hierarchy->where = h->where();
     parsed.hierarchy_yaml = YAML::Clone(h->yaml());
   }
@@ -389,7 +394,16 @@ YAML::Node effective_formation_job(const FormationJob& job) {
   }
   auto given = [](const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); };
   if (given(job.edits_yaml)) out["edits"] = YAML::Clone(job.edits_yaml);
-  if (given(job.hierarchy_yaml)) out["hierarchy"] = YAML::Clone(job.hierarchy_yaml);
+  if (given(job.hierarchy_yaml)) {
+    out["hierarchy"] = YAML::Clone(job.hierarchy_yaml);
+  } else if (job.options.auto_group_size > 0) {  // none given: the automatic default, as it is applied
+    YAML::Node automatic(YAML::NodeType::Map);
+    automatic["auto"] = job.options.auto_group_size;
+    automatic.SetStyle(YAML::EmitterStyle::Flow);
+    out["hierarchy"] = automatic;
+  } else {
+    out["hierarchy"] = "flat";
+  }
   return out;
 }
 

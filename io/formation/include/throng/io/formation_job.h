@@ -23,14 +23,17 @@
 //       - {pairs: [[1, 2]], factor: 4}       # these edges,
 //       - {members: [0, 1, 2], factor: 4}    # every edge between two of these individuals,
 //       - {groups: [brass, drums], factor: 4}  # every edge inside each named hierarchy group (its individuals)
-//   hierarchy:                        # none: one flat group (§4.4). A tree:
+//   hierarchy:                        # none: one flat group up to 2,000 individuals, beyond that built by
+//                                     # spectral clustering as {auto: 2000} (§4.4). A tree:
 //     name: band                      #   the root; each group has a name, members and/or groups
 //     members: [24]                   #   individuals directly in the group
 //     groups: [{name: brass, members: [0, 1, 2]}, ...]
 //   # or   hierarchy: {sizes: [3, 5, 5, 5, 4, 3]}   one level of groups of consecutive individuals (g0, g1, ...)
 //   # or   hierarchy: {nested: [35, 6, 6]}          levels of consecutive individuals: 35 groups of 6 subgroups
 //   #                                               of 6 (g0, g0.1, ...), as the `nested` shape orders them
-//   # or   hierarchy: {auto: 60}                    spectral clustering, at most 60 items per group
+//   # or   hierarchy: {auto: 60}                    spectral clustering, at most 60 items per group (used
+//   #                                               only when there are more individuals than that)
+//   # or   hierarchy: flat                          one flat group however many individuals
 //   frame_rate: 30                    # output frames per second; every keyframe time is a frame
 //   tension: 0.5                      # Catmull-Rom τ of Eq. 5, in [0, 1]
 //   reordering: greedy                # none | greedy | max_min (greedy, then the max-min refinement, §4.2)

@@ -45,8 +45,8 @@
 //      w = (Z2ᵀ Z1) w, ..., x = (M_{n+1} Z_last) w.
 //   9. Hierarchy (§4.4): a tree of groups; each group runs steps 1–8 on its items (its direct members and the
 //      barycentres of its subgroups) relative to its own barycentre, whose path comes from the parent group.
-//      Without a tree, one can be built by spectral clustering (recursive Fiedler bisection of the graph summed
-//      over the keyframes).
+//      Without a tree, one is built by spectral clustering (recursive Fiedler bisection of the graph summed
+//      over the keyframes) when there are more individuals than Options::auto_group_size (default 2,000).
 //  10. Collision avoidance (§4.3): social forces (Helbing & Molnár 1995) drive each individual along its spectral
 //      path while individuals repel; then the paths are smoothed (keyframe frames pinned) while a minimum distance
 //      is kept by projection at every frame.
@@ -70,6 +70,14 @@
 #include <vector>
 
 namespace throng::formation {
+
+/// Without a given hierarchy, a group of more individuals than this is split automatically (Options::
+/// auto_group_size, §4.4: the "built automatically by spectral clustering when not given"). Up to it
+/// one flat group stays within the time targets (a flat 2,000 × 1,000 frames: about 12 s on the 2-core
+/// machine with OpenBLAS's right kernels); beyond it the O(n³) eigen-analysis and O(n²) memory per keyframe of
+/// one group grow quickly, while clustering keeps every group at most this size. The paper's limit of 60 per
+/// group is a limit of its eigensolver, not of the method, so flat groups far larger are kept flat.
+inline constexpr int default_auto_group_size = 2000;
 
 /// How target eigenvectors are paired with source eigenvectors (§4.2).
 enum class Reordering {
@@ -110,8 +118,9 @@ struct Options {
                                      ///< fraction of their sum; otherwise the least-squares rotation
   bool match_individuals = false;    ///< rows of keyframes k ≥ 1 are not in correspondence with keyframe 0:
                                      ///< match them (minimum summed squared distance after alignment)
-  int auto_group_size = 0;           ///< > 0 and no hierarchy given: build one by spectral clustering with at
-                                     ///< most this many items per group (≥ 2); 0 = flat
+  int auto_group_size = default_auto_group_size;  ///< no hierarchy given and more individuals than this
+                                     ///< (≥ 2): one is built by spectral clustering with at most this many items
+                                     ///< per group; 0 = always flat
   double radius_m = 0.25;            ///< radius written for every individual
   CollisionOptions collision;
 };
@@ -156,7 +165,7 @@ struct Problem {
   std::vector<Keyframe> keyframes;  ///< ≥ 2, strictly increasing times, the same count and dimension
   std::vector<std::int64_t> ids;    ///< #individuals, distinct; empty: 0..n−1
   AdjacencyEdits edits;             ///< applied to every keyframe's graph
-  std::optional<Group> hierarchy;   ///< none: flat, or built automatically (Options::auto_group_size)
+  std::optional<Group> hierarchy;   ///< none: flat, or built automatically beyond Options::auto_group_size
 };
 
 /// What the collision stage achieved.
