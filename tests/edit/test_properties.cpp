@@ -204,6 +204,7 @@ TEST_CASE("a drag after precompute reuses the factorisation and equals a fresh e
   const int factorizations = editor.report().factorizations;
   const int schur = editor.report().schur_columns;
   CHECK(factorizations == 2);  // step 1 and step 2
+  CHECK(editor.report().analyses == 1);  // step 2 reuses step 1's symbolic analysis (one pattern)
   for (double dy : {1.0, 2.5, -3.0}) {
     request.drags[1].offset = Eigen::Vector2d(0.5, dy);
     std::get<Velocity>(request.constraints[0]).velocity.y() = 0.1 * dy;
@@ -213,10 +214,12 @@ TEST_CASE("a drag after precompute reuses the factorisation and equals a fresh e
     const Result fresh = edit_group_motion(crowd, options, request);
     CHECK(dragged.positions == fresh.crowd.positions);
   }
-  // A different handle set refactorises.
+  // A different handle set refactorises (and analyses once more, shared again).
   request.drags[1].selection.agents = {100, 101};
-  (void)editor.deform(request);
+  const CrowdMotion regrabbed = editor.resample(editor.deform(request));
   CHECK(editor.report().factorizations == factorizations + 2);
+  CHECK(editor.report().analyses == 2);
+  CHECK(regrabbed.positions == edit_group_motion(crowd, options, request).crowd.positions);
 }
 
 TEST_CASE("one thread and two threads give the same bits") {

@@ -223,6 +223,8 @@ struct Editor::State {
 
   void update_counts() {
     report.factorizations = step1_solver.report().factorizations + step2_solver.report().factorizations;
+    report.analyses = step1_solver.report().analyses + step2_solver.report().analyses -
+                      step1_solver.report().adopted_analyses - step2_solver.report().adopted_analyses;
     report.schur_columns = step1_solver.report().schur_columns + step2_solver.report().schur_columns;
   }
 
@@ -270,6 +272,7 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
     s.step2_solver.set_objective(s.step2.A, s.step2.weights);
     s.step2_solver.set_near_null_space(modes, 2);
     s.step2_solver.set_complex_pairs(true);
+    s.step2_solver.share_analysis(&s.step1_solver);
   }
   s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
 
@@ -290,6 +293,10 @@ void Editor::precompute() {
   State& s = *state_;
   const auto start = Clock::now();
   s.in_user_terms([&] {
+    // Both steps' Q_FF have one pattern (the same features, the same pins): step 2 copies step 1's symbolic
+    // analysis (ordering and supernodes) before either is factorised, so only symbols are copied.
+    s.step1_solver.analyze();
+    if (s.options.scale_compensation) s.step2_solver.analyze();
     s.step1_solver.precompute();
     if (s.options.scale_compensation) s.step2_solver.precompute();
   });

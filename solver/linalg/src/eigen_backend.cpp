@@ -17,6 +17,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
@@ -26,6 +27,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace throng::linalg {
 namespace {
@@ -188,7 +190,42 @@ class Factorization {
     SupernodalLlt() { this->cholmod().print = 0; }  // failures become exceptions, not printed lines
     [[nodiscard]] const cholmod_factor* factor() const { return this->m_cholmodFactor; }
     [[nodiscard]] double reciprocal_condition() { return cholmod_l_rcond(this->m_cholmodFactor, &this->cholmod()); }
+    // Takes a copy of another's analysed factor (symbolic, plus numeric values when it has them: factorize()
+    // overwrites those), as if analyzePattern() had run on the same pattern.
+    bool adopt(const SupernodalLlt& other) {
+      if (other.m_cholmodFactor == nullptr || !other.m_analysisIsOk) return false;
+      cholmod_factor* copy = cholmod_l_copy_factor(other.m_cholmodFactor, &this->cholmod());
+      if (copy == nullptr) return false;
+      if (this->m_cholmodFactor != nullptr) cholmod_l_free_factor(&this->m_cholmodFactor, &this->cholmod());
+      this->m_cholmodFactor = copy;
+      this->m_info = Eigen::Success;
+      this->m_analysisIsOk = true;
+      this->m_factorizationIsOk = false;
+      return true;
+    }
   };
+
+  // Reuses `other`'s analysis when `lower` has the pattern it analysed (the outer and inner index arrays).
+  bool adopt(const Factorization& other, const Matrix& lower, FactorizationInfo& info, double& bytes) {
+    if (!other.llt_ || other.pattern_outer_.size() != static_cast<std::size_t>(lower.outerSize()) + 1 ||
+        other.pattern_inner_.size() != static_cast<std::size_t>(lower.nonZeros()) ||
+        !std::equal(other.pattern_outer_.begin(), other.pattern_outer_.end(), lower.outerIndexPtr()) ||
+        !std::equal(other.pattern_inner_.begin(), other.pattern_inner_.end(), lower.innerIndexPtr())) {
+      return false;
+    }
+    auto llt = std::make_unique<SupernodalLlt>();
+    if (!llt->adopt(*other.llt_)) return false;
+    llt_ = std::move(llt);
+    ldlt_.reset();
+    pattern_outer_ = other.pattern_outer_;
+    pattern_inner_ = other.pattern_inner_;
+    info.factor_nonzeros = other.lnz_;
+    lnz_ = other.lnz_;
+    info.method = other.method_;
+    method_ = other.method_;
+    bytes = static_cast<double>(llt_->factor()->xsize) * sizeof(Scalar) + 64.0 * static_cast<double>(lower.rows());
+    return true;
+  }
 
   // Symbolic phase; returns nonzeros of L, the ordering's name and the bytes the numeric factor will take.
   void analyze(const Matrix& lower, FactorizationInfo& info, double& bytes) {
@@ -203,6 +240,10 @@ class Factorization {
     info.factor_nonzeros = common.lnz;
     info.method = std::string("CHOLMOD supernodal ") + (std::is_same_v<Scalar, double> ? "LLᵀ" : "complex LLᴴ") + " (" +
                   ordering_name(common.method[common.selected].ordering) + ")";
+    method_ = info.method;
+    lnz_ = common.lnz;
+    pattern_outer_.assign(lower.outerIndexPtr(), lower.outerIndexPtr() + lower.outerSize() + 1);
+    pattern_inner_.assign(lower.innerIndexPtr(), lower.innerIndexPtr() + lower.nonZeros());
     bytes = static_cast<double>(llt_->factor()->xsize) * sizeof(Scalar) + 64.0 * static_cast<double>(lower.rows());
   }
 
@@ -264,6 +305,10 @@ class Factorization {
  private:
   std::unique_ptr<SupernodalLlt> llt_;
   std::unique_ptr<Eigen::SimplicialLDLT<Matrix, Eigen::Lower>> ldlt_;
+  // The analysed pattern (for adopt()) and the method's name.
+  std::vector<SuiteSparse_long> pattern_outer_, pattern_inner_;
+  std::string method_;
+  double lnz_ = 0;
 };
 
 class EigenSpdSolver final : public SpdSolver {
@@ -293,6 +338,29 @@ class EigenSpdSolver final : public SpdSolver {
       real_->analyze(lower_triangle(matrix), info_, bytes);
     }
     check_memory(matrix.rows(), bytes);
+  }
+
+  bool adopt_analysis(const SpdSolver& other_solver, const SparseMatrix& matrix) override {
+    const auto* other = dynamic_cast<const EigenSpdSolver*>(&other_solver);
+    if (other == nullptr || matrix.rows() != matrix.cols() || use_complex(matrix) != other->use_complex(matrix)) return false;
+    FactorizationInfo info;
+    double bytes = 0;
+    if (use_complex(matrix)) {
+      if (!other->complex_) return false;
+      auto mine = std::make_unique<Factorization<std::complex<double>>>();
+      if (!mine->adopt(*other->complex_, complex_lower_triangle(matrix), info, bytes)) return false;
+      real_.reset();
+      complex_ = std::move(mine);
+    } else {
+      if (!other->real_) return false;
+      auto mine = std::make_unique<Factorization<double>>();
+      if (!mine->adopt(*other->real_, lower_triangle(matrix), info, bytes)) return false;
+      complex_.reset();
+      real_ = std::move(mine);
+    }
+    info_ = info;
+    check_memory(matrix.rows(), bytes);
+    return true;
   }
 
   void factorize(const SparseMatrix& matrix) override {

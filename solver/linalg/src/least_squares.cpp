@@ -129,6 +129,9 @@ struct ConstrainedLeastSquares::State {
   // The free part of the last solve's first back-substitution: the start of the next one for iterative backends.
   Eigen::MatrixXd last_x0;
 
+  // A solver whose analysis this one may reuse (share_analysis).
+  const ConstrainedLeastSquares* analysis_source = nullptr;
+
   // Pin basis (set_pin_basis): x_P = B u, Z = Q_FF⁻¹ Q_FP B, and Q_FF⁻¹ last_r for the basis path.
   SparseMatrix pin_basis;
   Eigen::MatrixXd Z;
@@ -425,7 +428,9 @@ void ConstrainedLeastSquares::set_complex_pairs(bool complex_pairs) {
   state_->invalidate_factor();
 }
 
-void ConstrainedLeastSquares::precompute() {
+void ConstrainedLeastSquares::share_analysis(const ConstrainedLeastSquares* other) { state_->analysis_source = other; }
+
+void ConstrainedLeastSquares::analyze() {
   State& s = *state_;
   if (s.n() == 0) throw std::invalid_argument("ConstrainedLeastSquares: set_objective() with at least one unknown first");
   if (s.q_stale) {
@@ -446,13 +451,22 @@ void ConstrainedLeastSquares::precompute() {
     s.split_constraints();
     if (s.free_count() > 0) {
       s.pass_hints();
-      s.backend->analyze(s.Q_FF);
+      const State* source = s.analysis_source != nullptr ? s.analysis_source->state_.get() : nullptr;
+      const bool adopted = source != nullptr && !source->analysis_stale && source->free_count() == s.free_count() &&
+                           s.backend->adopt_analysis(*source->backend, s.Q_FF);
+      if (!adopted) s.backend->analyze(s.Q_FF);
+      s.report.adopted_analyses += adopted ? 1 : 0;
     }
     s.analysis_stale = false;
     s.factor_stale = true;
     ++s.report.analyses;
     s.report.analyze_seconds += seconds_since(start);
   }
+}
+
+void ConstrainedLeastSquares::precompute() {
+  analyze();
+  State& s = *state_;
   if (s.factor_stale) {
     const auto start = Clock::now();
     if (s.split_stale) s.split_q();

@@ -157,6 +157,7 @@ struct Report {
   /// Δt), measured on the resampled output by max_request_residual(); set by edit_group_motion and the program
   double max_output_residual = 0;
   int factorizations = 0;              ///< numeric factorisations so far, both steps (a drag adds none)
+  int analyses = 0;                    ///< symbolic analyses computed so far, both steps (step 2 reuses step 1's)
   int schur_columns = 0;               ///< back-substitutions spent on constraint columns so far, both steps
   double factor_nonzeros = 0;          ///< entries of both steps' Cholesky factors, last precompute (direct backends)
   /// The smaller of both steps' reciprocal condition estimates, last precompute (direct backends; 0 when the

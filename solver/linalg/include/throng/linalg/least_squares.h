@@ -52,6 +52,7 @@ class ConstraintError : public NumericalError {
 /// What precompute() and solve() did: counts, timings (seconds) and the backend's own report.
 struct LeastSquaresReport {
   int analyses = 0;          ///< symbolic analyses so far (new pattern or new pinned set)
+  int adopted_analyses = 0;  ///< of which: reused from another solver's (share_analysis), not computed
   int factorizations = 0;    ///< numeric factorisations so far (new values)
   int schur_columns = 0;     ///< back-substitutions spent on Schur complement columns so far
   double analyze_seconds = 0;     ///< last analysis (assembling Q and the symbolic phase)
@@ -105,6 +106,15 @@ class ConstrainedLeastSquares {
   /// each pair of rows is [[a, −b], [b, a]]), so AᵀWA is complex Hermitian in real form and the backend may
   /// factor it in complex arithmetic. Kept only when the pins take or leave whole pairs. Invalidates the analysis.
   void set_complex_pairs(bool complex_pairs);
+
+  /// Assembles Q and runs the symbolic analysis if stale (the first part of precompute()).
+  void analyze();
+
+  /// Lets this solver's analyses reuse `other`'s (SpdSolver::adopt_analysis) when its Q_FF has the pattern of
+  /// other's: two objectives over one graph with the same pins analyse once. `other` must outlive this solver
+  /// and be analysed first (analyze()); before other's numeric factorisation the reuse copies the symbolic
+  /// factor only. nullptr stops it.
+  void share_analysis(const ConstrainedLeastSquares* other);
 
   /// Redoes what the mutators made stale: assemble Q and analyse, factorise, extend the Schur complement.
   /// Throws NumericalError when Q_FF is singular (the pins do not determine x).

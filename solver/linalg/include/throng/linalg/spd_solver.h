@@ -63,6 +63,15 @@ class SpdSolver {
   /// Symbolic phase for the pattern of `matrix` (#n by #n, both triangles stored, symmetric).
   virtual void analyze(const SparseMatrix& matrix) = 0;
 
+  /// Instead of analyze(matrix): reuse `other`'s symbolic analysis (ordering, supernodes) when `matrix` has the
+  /// pattern `other` analysed with the same hints (two systems over one graph, such as the editor's two steps).
+  /// Returns false, having done nothing, when this backend cannot (then call analyze()).
+  virtual bool adopt_analysis(const SpdSolver& other, const SparseMatrix& matrix) {
+    (void)other;
+    (void)matrix;
+    return false;
+  }
+
   /// Numeric phase: factorises (direct) or builds the preconditioner (iterative) for `matrix`, which has the
   /// pattern given to analyze(). Throws SingularMatrixError when `matrix` is singular or not positive definite
   /// (iterative backends may only find out in solve()), NumericalError when memory does not suffice.
