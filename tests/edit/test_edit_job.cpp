@@ -10,6 +10,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 const char* full_job = R"(
+clip_only: true
 clip: {first_frame: 5, last_frame: end, agents: [100, 101, 102], sample_step: 3}
 formation:
   max_edge_length: 4.5
@@ -38,6 +39,8 @@ EditJob parse(const std::string& text) { return read_edit_job(ConfigNode::parse(
 
 TEST_CASE("every key of a full job is read") {
   const EditJob job = parse(full_job);
+  CHECK(job.clip_only);
+  CHECK_FALSE(parse("{}").clip_only);  // default: the whole crowd with the clip put back
   const edit::Options& o = job.options;
   CHECK(o.clip.first_frame == 5);
   CHECK(o.clip.last_frame == std::numeric_limits<std::size_t>::max());
