@@ -1,6 +1,7 @@
 // The time warp at scale (issue 4): 1,000 agents × 600 frames whose paths bulge sideways (so they walk faster
 // there), warped back towards the original speeds: the whole method, the warp alone (closed form and smoothed)
-// and the spline resampling alone.
+// and the spline resampling alone. Counter peak_heap_MB: the largest heap in use during the warp above what was
+// in use before (bench/stitch/heap_peak.h; the output crowd is part of it).
 //
 // Run:   bench_timewarp --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <throng/timewarp/resample.h>
@@ -8,6 +9,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include "../stitch/heap_peak.h"
+
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -47,12 +51,17 @@ const Scene& scene() {
 void time_warp_1000x600(benchmark::State& state) {
   timewarp::Options o;
   o.smoothing_time = static_cast<double>(state.range(0));
+  (void)scene();  // built before the memory reading
   timewarp::Report report;
+  double peak_mb = 0;
   for (auto _ : state) {
+    bench::HeapPeak peak;
     const timewarp::Result r = timewarp::time_warp(scene().deformed, scene().original, o);
+    peak_mb = std::max(peak_mb, peak.stop());
     report = r.report;
     benchmark::DoNotOptimize(r.crowd.positions.data());
   }
+  state.counters["peak_heap_MB"] = peak_mb;
   state.counters["frames_out"] = static_cast<double>(report.frames_out);
   state.counters["deviation_before"] = report.speed_deviation_before;
   state.counters["deviation_after"] = report.speed_deviation_after;

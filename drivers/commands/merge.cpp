@@ -85,6 +85,7 @@ class MergeCommand final : public Command {
     for (const auto& in : inputs_) check_distinct(in, output_);
     if (!job_path_.empty()) check_distinct(job_path_, output_);
     context.limit_threads();
+    (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
     std::vector<CrowdFile> files;
     files.reserve(inputs_.size());

@@ -73,6 +73,8 @@ class SplitCommand final : public Command {
       check_distinct(output_, other_);
     }
     context.limit_threads();
+    (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
+    if (!other_.empty()) (void)AtomicOutput(other_);
 
     const CrowdFile input = read_crowd_file(input_);
     Part part = split_part(input, parsed, false);

@@ -5,7 +5,9 @@
 #include <throng/io/atomic_output.h>
 #include <throng/io/command_job.h>
 #include <throng/io/stitch_job.h>
+#include <throng/linalg/mpi.h>
 
+#include <iomanip>
 #include <memory>
 #include <numbers>
 #include <sstream>
@@ -29,8 +31,15 @@ std::string id_list(const std::vector<std::int64_t>& ids) {
   return s.str();
 }
 
-/// The work shared by `throng stitch` and the `stitch` step.
-Stitched stitch_all(const std::vector<const CrowdFile*>& inputs, const StitchJob& job, Context& context) {
+std::string short_number(double value) {
+  std::ostringstream s;
+  s << std::setprecision(4) << value;
+  return s.str();
+}
+
+/// The work shared by `throng stitch` and the `stitch` step; `speak` false keeps its warnings quiet (the ranks
+/// other than 0 of one stitch under mpiexec).
+Stitched stitch_all(const std::vector<const CrowdFile*>& inputs, const StitchJob& job, Context& context, bool speak = true) {
   auto stitched = std::make_shared<StitchedCrowds>(stitch_crowds(inputs, job, context.progress()));
   Stitched s;
   s.crowd = stitched->crowd;
@@ -39,13 +48,19 @@ Stitched stitch_all(const std::vector<const CrowdFile*>& inputs, const StitchJob
   for (std::size_t k = 0; k < stitched->joints.size(); ++k) {
     const stitch::Report& r = stitched->joints[k].report;
     const std::string which = "stitch: joint " + std::to_string(k + 1) + ": ";
-    if (!r.left_out_first.empty()) {
+    if (speak && !r.left_out_first.empty()) {
       context.warn(which + std::to_string(r.left_out_first.size()) + " agent(s) of the clip so far absent from part of it were left out (" +
                    id_list(r.left_out_first) + ")");
     }
-    if (!r.left_out_second.empty()) {
+    if (speak && !r.left_out_second.empty()) {
       context.warn(which + std::to_string(r.left_out_second.size()) + " agent(s) of input " + std::to_string(k + 2) +
                    " absent from part of it were left out (" + id_list(r.left_out_second) + ")");
+    }
+    if (speak && r.window_limited) {
+      context.warn(which + "blending the whole clips would solve " + std::to_string(r.whole_clip_vertices) +
+                   " vertices (agents × samples), over max_blend_vertices " + std::to_string(job.options.max_blend_vertices) +
+                   ": the window is shortened to " + short_number(r.window_first_s) + " s / " + short_number(r.window_second_s) +
+                   " s per side (set blend_window, raise sample_step or max_blend_vertices)");
     }
     Report j;
     j["frame"] = stitched->joint_frames[k];
@@ -57,6 +72,10 @@ Stitched stitch_all(const std::vector<const CrowdFile*>& inputs, const StitchJob
     j["gap_rms_m"] = r.gap_rms;
     j["gap_max_m"] = r.gap_max;
     j["window"] = {r.window_first, r.window_second};
+    j["window_s"] = {r.window_first_s, r.window_second_s};
+    j["window_limited"] = r.window_limited;
+    j["fit_starts"] = r.fit_starts;
+    j["fit_rounds"] = r.fit_rounds;
     j["solved_samples"] = r.solved_samples;
     j["unknowns"] = r.unknowns;
     j["max_change_m"] = r.max_change;
@@ -83,7 +102,9 @@ class StitchCommand final : public Command {
     app.add_option("clips", inputs_, "Crowd files to stitch (.h5), two or more, in order")->required()->expected(2, -1);
     app.add_option("-o,--output", output_, "Crowd file to write (.h5)")->required();
     app.add_option("--job", job_path_, "Stitch job (.yaml): weights, solver ...; the flags below override its keys");
-    flags_.value(app, "--blend-window", "blend_window", "Frames from each joint over which formations blend, per side (default 30; 0: each clip's length)");
+    flags_.value(app, "--blend-window", "blend_window",
+                 "Seconds from each joint over which formations blend, per side (default 0: the whole clips, within --max-blend-vertices)");
+    flags_.value(app, "--max-blend-vertices", "max_blend_vertices", "Budget of the automatic window: agents × solved samples (default 60000; 0: none)");
     flags_.value(app, "--matching", "matching", "world | centred: how agents are matched across the joint");
     flags_.value(app, "--alignment", "alignment", "rigid | translation | none: how the next clip is moved onto the joint");
     flags_.value(app, "--sample-step", "sample_step", "Frames between graph samples");
@@ -97,6 +118,7 @@ class StitchCommand final : public Command {
     for (const auto& in : inputs_) check_distinct(in, output_);
     if (!job_path_.empty()) check_distinct(job_path_, output_);
     context.limit_threads();
+    (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
     std::vector<CrowdFile> files;
     files.reserve(inputs_.size());
@@ -110,8 +132,14 @@ class StitchCommand final : public Command {
     }
     for (const auto& in : inputs_) names.push_back(in.string());
     if (!job_path_.empty()) names.push_back(job_path_.string());
-    Stitched s = stitch_all(clips, parsed, context);
+    const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
+    if (writer && mpi::size() > 1 && parsed.options.solver.backend != "petsc") {
+      context.warn("stitch: " + std::to_string(mpi::size()) + " ranks with the " + parsed.options.solver.backend +
+                   " backend: every rank solves the whole problem (solver.backend petsc shares it)");
+    }
+    Stitched s = stitch_all(clips, parsed, context, writer);
     s.crowd.provenance = context.provenance(effective, names, sources);
+    if (!writer) return;  // one file and one report, from rank 0
     write_crowd_file(output_, s.crowd, s.extra);
     Report r;
     r["output"] = output_.string();

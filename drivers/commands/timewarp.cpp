@@ -88,6 +88,7 @@ class TimewarpCommand final : public Command {
     check_distinct(reference_, output_);
     if (!job_path_.empty()) check_distinct(job_path_, output_);
     context.limit_threads();
+    (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
     const CrowdFile deformed = read_crowd_file(input_);
     const CrowdFile reference = read_crowd_file(reference_);

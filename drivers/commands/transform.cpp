@@ -69,6 +69,7 @@ class TransformCommand final : public Command {
     check_distinct(input_, output_);
     if (!job_path_.empty()) check_distinct(job_path_, output_);
     context.limit_threads();
+    (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
     const CrowdFile input = read_crowd_file(input_);
     Transformed t = transform_crowd(input, parsed);

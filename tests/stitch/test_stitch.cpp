@@ -14,6 +14,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <numeric>
 
@@ -252,6 +253,32 @@ TEST_CASE("the boundary fit recovers a clip turned by any angle, where one match
   }
 }
 
+TEST_CASE("of fits as close as each other, the boundary fit keeps the group walking forward") {
+  // A 4 × 5 block is the same set of points turned by 180°: G′ = the block walking −x fits G (walking +x) as well
+  // as placed (every agent onto the one at its place) as turned around (every agent onto its mirror image).
+  Points a(20, 2);
+  for (Eigen::Index i = 0; i < 20; ++i) a.row(i) << static_cast<double>(i % 4) - 1.5, static_cast<double>(i / 4) - 2.0;
+  const std::vector<std::size_t> perm = shuffled(20, 5);
+  Points b(20, 2);
+  for (Eigen::Index k = 0; k < 20; ++k) b.row(k) = -a.row(static_cast<Eigen::Index>(perm[static_cast<std::size_t>(k)]));
+  Headings walking;
+  walking.first << 0.1, 0.0;    // G walks +x
+  walking.second << -0.1, 0.0;  // G′ walks −x as given
+  for (Matching m : {Matching::world, Matching::centred}) {
+    const BoundaryFit forward = fit_boundary(a, b, walking, m, Alignment::rigid);
+    CHECK(std::abs(std::remainder(std::atan2(forward.alignment.linear()(1, 0), forward.alignment.linear()(0, 0)) - std::numbers::pi,
+                                  2 * std::numbers::pi)) <= 1e-9);
+    CHECK(forward.correspondence.total_distance <= 1e-9);
+    for (std::size_t k = 0; k < 20; ++k) CHECK(forward.correspondence.second_of_first[perm[k]] == k);  // the mirror image
+    // Standing groups say nothing: the tie keeps the placement (the paper's single matching).
+    const BoundaryFit placed = fit_boundary(a, b, Headings{}, m, Alignment::rigid);
+    CHECK(placed.alignment.linear().isIdentity(1e-9));
+    CHECK(placed.correspondence.total_distance <= 1e-9);
+    // A deliberate U-turn keeps its placement with alignment translation.
+    CHECK(fit_boundary(a, b, walking, m, Alignment::translation).alignment.linear().isIdentity());
+  }
+}
+
 TEST_CASE("stitching two different formations closes the gap smoothly inside the window and keeps the far ends") {
   // G: a 1 m grid; G′: a 1.6 m grid walking on: the formations differ, so the joint has a gap to close.
   const CrowdMotion g = test::marching_grid(3, 4, 31, 1.0, 1.3, 0.1, 0.0, 0.05, 1);
@@ -292,7 +319,7 @@ TEST_CASE("stitching two different formations closes the gap smoothly inside the
   CHECK(walk + 2 * spread < r.report.gap_max);
   // A shorter window changes only frames within it.
   Options o = base;
-  o.blend_window = 6;
+  o.blend_window = 0.6;  // seconds: 6 frames of 0.1 s
   const Result short_window = stitch_clips(g, g2, o);
   for (std::size_t f = 0; f < 71; ++f) {
     if (f > 30 - 6 && f < 30 + 6) continue;
@@ -304,6 +331,77 @@ TEST_CASE("stitching two different formations closes the gap smoothly inside the
   }
   if (step == 1) CHECK(short_window.report.solved_samples == 2 * 6 - 1 + 2);
   if (step == 4) CHECK(short_window.report.solved_samples == 2 * 2 - 1 + 2);  // joint ± 4 free, the window's edges ± 6 pinned
+}
+
+TEST_CASE("the blending window is a duration: the whole clips by default, shortened only past the vertex budget") {
+  // The same motion sampled at 10 and at 20 frames per second: a 0.6-s window spans 6 and 12 frames.
+  for (double dt : {0.1, 0.05}) {
+    const auto frames = static_cast<std::size_t>(std::lround(4.0 / dt)) + 1;
+    const CrowdMotion g = test::marching_grid(3, 4, frames, 1.0, 1.3, dt, 0.0, 0.05, 1);
+    const TimeSplit halves = split_at_frame(g, frames / 2);
+    Options o;
+    o.blend_window = 0.6;
+    const Result r = stitch_clips(halves.first, halves.second, o);
+    INFO("dt " << dt);
+    CHECK(r.report.window_first == static_cast<std::size_t>(std::lround(0.6 / dt)));
+    CHECK(r.report.window_second == r.report.window_first);
+    CHECK(r.report.window_first_s == 0.6);
+    CHECK_FALSE(r.report.window_limited);
+  }
+  const CrowdMotion g = test::marching_grid(3, 4, 31, 1.0, 1.3, 0.1, 0.0, 0.05, 1);
+  const CrowdMotion g2 = test::marching_grid(3, 4, 41, 1.6, 1.3, 0.1, 0.0, 0.05, 2);
+  SECTION("automatic, within the budget: each clip's whole duration (the paper's window)") {
+    const Result r = stitch_clips(g, g2, Options{});
+    CHECK(r.report.window_first == 30);
+    CHECK(r.report.window_second == 40);
+    CHECK(r.report.window_first_s == Approx(3.0).epsilon(1e-12));
+    CHECK(r.report.window_second_s == Approx(4.0).epsilon(1e-12));
+    CHECK(r.report.solved_samples == 71);
+    CHECK(r.report.whole_clip_vertices == 12 * 71);
+    CHECK_FALSE(r.report.window_limited);
+  }
+  SECTION("automatic, past the budget: the longest common window that fits") {
+    Options o;
+    o.max_blend_vertices = 12 * 25;  // 25 samples of the 12 agents: the joint, 11 free on each side, 2 pinned edges
+    const Result r = stitch_clips(g, g2, o);
+    CHECK(r.report.window_limited);
+    CHECK(r.report.whole_clip_vertices == 12 * 71);
+    CHECK(r.report.solved_samples * 12 <= o.max_blend_vertices);
+    CHECK(r.report.solved_samples == 25);
+    CHECK(r.report.window_first == 12);
+    CHECK(r.report.window_second == 12);
+    // Frames beyond the window keep their input.
+    for (std::size_t a = 0; a < 12; ++a) CHECK((r.crowd.position(30 - 12, a) - g.position(30 - 12, a)).norm() <= 1e-12);
+    o.max_blend_vertices = 1;  // less than any window: one sample step per side remains
+    const Result tiny = stitch_clips(g, g2, o);
+    CHECK(tiny.report.solved_samples == 3);
+    CHECK(tiny.report.window_first == 1);
+  }
+}
+
+TEST_CASE("formation edits by agent id of the first clip act at the solved samples in their frames") {
+  const CrowdMotion g = test::marching_grid(3, 4, 31, 1.0, 1.3, 0.1, 0.0, 0.05, 1);
+  CrowdMotion g2 = test::marching_grid(3, 4, 41, 1.6, 1.3, 0.1, 0.0, 0.05, 2);
+  for (std::size_t f = 0; f < g2.frame_count(); ++f) g2.times[f] += 10;
+  Options o;
+  o.blend_window = 1.0;
+  const Result plain = stitch_clips(g, g2, o);
+  // Removing the edge between two neighbours changes Ḡ's triangles, so the solve, inside the window only.
+  o.formation.edits.push_back({g.ids[0], g.ids[1], 0, std::numeric_limits<std::size_t>::max(), false});
+  const Result removed = stitch_clips(g, g2, o);
+  CHECK(removed.report.formation_edits == 1);
+  CHECK(removed.report.spatial_features < plain.report.spatial_features);
+  CHECK(max_gap(removed.crowd, plain.crowd) > 1e-6);
+  // An edit whose frames hold no solved sample changes nothing.
+  o.formation.edits.back().first_frame = 0;
+  o.formation.edits.back().last_frame = 15;
+  const Result outside = stitch_clips(g, g2, o);
+  CHECK(outside.report.formation_edits == 0);
+  CHECK(outside.crowd.positions == plain.crowd.positions);
+  // An id the first clip does not have: ConfigError naming the edit.
+  o.formation.edits.back().agent_b = 99999;
+  CHECK_THROWS_AS(stitch_clips(g, g2, o), ConfigError);
+  CHECK_THROWS_WITH(stitch_clips(g, g2, o), Catch::Contains("formation.edits[0]") && Catch::Contains("99999"));
 }
 
 TEST_CASE("a stitched clip has the same bits with one thread and with two") {
@@ -352,4 +450,10 @@ TEST_CASE("mismatched agent counts, too-short clips and bad options are errors n
   o = Options{};
   o.weights.beta = -1;
   CHECK_THROWS_WITH(stitch_clips(a, a, o), Catch::Contains("beta"));
+  // Numbers in messages are written in their shortest exact form ("-10", not "-1e+01").
+  o.weights.beta = -10;
+  CHECK_THROWS_WITH(stitch_clips(a, a, o), Catch::Contains("beta -10:"));
+  o = Options{};
+  o.blend_window = -0.25;
+  CHECK_THROWS_WITH(stitch_clips(a, a, o), Catch::Contains("blend_window -0.25:"));
 }

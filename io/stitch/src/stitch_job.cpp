@@ -2,6 +2,7 @@
 #include <throng/io/stitch_job.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace throng {
 namespace {
@@ -18,7 +19,8 @@ void bind_solver(OptionBinder& b, linalg::SolverOptions& s) {
 }
 
 void bind(OptionBinder& b, stitch::Options& o) {
-  b.field("blend_window", o.blend_window, Range::closed(0, 1e9));
+  b.field("blend_window", o.blend_window, Range::non_negative());
+  b.field("max_blend_vertices", o.max_blend_vertices, Range::closed(0, 1e12));
   b.choice("matching", o.matching, {{"world", stitch::Matching::world}, {"centred", stitch::Matching::centred}});
   b.choice("alignment", o.alignment,
            {{"rigid", stitch::Alignment::rigid}, {"translation", stitch::Alignment::translation}, {"none", stitch::Alignment::none}});
@@ -36,6 +38,54 @@ void bind(OptionBinder& b, stitch::Options& o) {
     f.field("degenerate_ratio", o.features.degenerate_ratio, Range{0.0, 1.0, false, true});
   });
   b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
+}
+
+constexpr std::size_t to_end = std::numeric_limits<std::size_t>::max();
+
+// An output frame (≥ 0), or `end` for the last bound.
+std::size_t frame_of(const ConfigNode& node, bool end_allowed) {
+  if (end_allowed && node.is_scalar() && node.as_string() == "end") return to_end;
+  const std::int64_t v = node.as_int();
+  if (v < 0) node.fail("frame " + std::to_string(v) + " is negative: frames are indices into the stitched output, from 0");
+  return static_cast<std::size_t>(v);
+}
+
+// formation.edits: [{add: [a, b] | remove: [a, b], frames: [first, last|end]}], by agent id of the first clip,
+// frames of the stitched output (as the edit job's, whose frames are the input's).
+void read_edge_edits(const ConfigNode& job, FormationOptions& o) {
+  const auto formation = job.find("formation");
+  if (!formation) return;
+  const auto edits = formation->find("edits");
+  if (!edits) return;
+  for (const ConfigNode& e : edits->elements()) {
+    const auto add = e.find("add");
+    const auto remove = e.find("remove");
+    if (static_cast<bool>(add) == static_cast<bool>(remove)) e.fail("give exactly one of add: [a, b] or remove: [a, b]");
+    const ConfigNode& pair = add ? *add : *remove;
+    std::vector<std::int64_t> agents;
+    for (const ConfigNode& id : pair.elements()) agents.push_back(id.as_int());
+    if (agents.size() != 2) pair.fail("expected two agent ids, found " + std::to_string(agents.size()));
+    if (agents[0] == agents[1]) pair.fail("an edge needs two different agents, got " + std::to_string(agents[0]) + " twice");
+    EdgeEdit edit{agents[0], agents[1], 0, to_end, static_cast<bool>(add)};
+    if (const auto frames = e.find("frames")) {
+      const std::vector<ConfigNode> ends = frames->elements();
+      if (ends.size() != 2) frames->fail("expected [first, last] (last may be 'end'), found " + std::to_string(ends.size()) + " values");
+      edit.first_frame = frame_of(ends[0], false);
+      edit.last_frame = frame_of(ends[1], true);
+      if (edit.first_frame > edit.last_frame) {
+        frames->fail("first frame " + std::to_string(edit.first_frame) + " is after the last " + std::to_string(edit.last_frame));
+      }
+    }
+    o.edits.push_back(edit);
+  }
+}
+
+YAML::Node flow_ids(std::int64_t a, std::int64_t b) {
+  YAML::Node n(YAML::NodeType::Sequence);
+  n.push_back(a);
+  n.push_back(b);
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
 }
 
 // Maps [0, 1] of one joint into its share of the whole.
@@ -58,6 +108,7 @@ StitchJob read_stitch_job(const ConfigNode& job) {
   StitchJob s;
   OptionReader reader(job);
   bind(reader, s.options);
+  read_edge_edits(job, s.options.formation);
   job.finish();
   try {
     stitch::validate(s.options);
@@ -72,6 +123,21 @@ YAML::Node effective_stitch_job(const StitchJob& job) {
   stitch::Options options = job.options;
   OptionWriter writer(out);
   bind(writer, options);
+  if (!options.formation.edits.empty()) {
+    YAML::Node edits(YAML::NodeType::Sequence);
+    for (const EdgeEdit& e : options.formation.edits) {
+      YAML::Node n;
+      n[e.add ? "add" : "remove"] = flow_ids(e.agent_a, e.agent_b);
+      YAML::Node frames(YAML::NodeType::Sequence);
+      frames.push_back(static_cast<std::uint64_t>(e.first_frame));
+      if (e.last_frame == to_end) frames.push_back("end");
+      else frames.push_back(static_cast<std::uint64_t>(e.last_frame));
+      frames.SetStyle(YAML::EmitterStyle::Flow);
+      n["frames"] = frames;
+      edits.push_back(n);
+    }
+    out["formation"]["edits"] = edits;
+  }
   return out;
 }
 
@@ -122,6 +188,8 @@ void write_stitch_data(const h5::Group& throng_parameters, const StitchedCrowds&
     j.set_attribute("gap_rms", r.report.gap_rms);
     j.set_attribute("gap_max", r.report.gap_max);
     j.write("window", std::vector<std::int64_t>{static_cast<std::int64_t>(r.report.window_first), static_cast<std::int64_t>(r.report.window_second)}, {2});
+    j.write("window_seconds", std::vector<double>{r.report.window_first_s, r.report.window_second_s}, {2});
+    j.set_attribute("window_limited", static_cast<std::int64_t>(r.report.window_limited ? 1 : 0));
     j.set_attribute("matching_distance", r.report.matching_distance);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -16,9 +17,10 @@ namespace {
 using Index = Eigen::Index;
 
 constexpr int max_rounds = 30;               // per start
-constexpr double same_start = 1e-6;          // radians: starts closer than this are one
+constexpr double same_start = 0.175;         // radians (10°): starts closer than this are one
 constexpr double falling = 1e-12;            // relative decrease that counts as still improving
 constexpr double better_than_earlier = 1e-9; // relative margin a later fit needs to replace an earlier one
+constexpr double screen_margin = 0.25;       // screened fits within 25 % of the best are refined exactly
 
 Eigen::Vector2d centroid(const Eigen::Ref<const Points>& p) { return p.colwise().mean().transpose(); }
 
@@ -87,6 +89,48 @@ Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<c
   return m;
 }
 
+namespace {
+
+// From the start `m`: pair each point of `to` with its nearest point of m·from (not a matching: a point may be
+// chosen twice), align those pairs, repeat until the pairs repeat or the summed distance stops falling. A cheap
+// iteration, O(n²) a round against the assignment's O(n³).
+struct NearestFit {
+  double score = std::numeric_limits<double>::infinity();  // least summed distance reached
+  Eigen::Isometry2d alignment = Eigen::Isometry2d::Identity();  // where it was reached
+};
+
+NearestFit nearest_fit(const Eigen::Ref<const Points>& to, const Eigen::Ref<const Points>& from, Eigen::Isometry2d m,
+                       Alignment alignment) {
+  const Index n = to.rows();
+  std::vector<Index> nearest(static_cast<std::size_t>(n)), previous_pairs;
+  Points moved(n, 2), paired(n, 2);
+  NearestFit best;
+  double previous = best.score;
+  for (int round = 0; round < max_rounds; ++round) {
+    for (Index k = 0; k < n; ++k) moved.row(k) = (m * Eigen::Vector2d(from.row(k).transpose())).transpose();
+    for (Index i = 0; i < n; ++i) {
+      Index at = 0;
+      double d_best = std::numeric_limits<double>::infinity();
+      for (Index k = 0; k < n; ++k) {
+        const double d = (to.row(i) - moved.row(k)).squaredNorm();
+        if (d < d_best) d_best = d, at = k;
+      }
+      nearest[static_cast<std::size_t>(i)] = at;
+      paired.row(i) = from.row(at);
+    }
+    if (nearest == previous_pairs) break;
+    previous_pairs = nearest;
+    m = align(paired, to, alignment);
+    const double cost = summed_distance(to, paired, m);
+    if (cost < best.score) best = {cost, m};
+    if (!(cost < previous * (1 - falling))) break;
+    previous = cost;
+  }
+  return best;
+}
+
+}  // namespace
+
 BoundaryFit fit_boundary(const Eigen::Ref<const Points>& last_of_first, const Eigen::Ref<const Points>& first_of_second,
                          const Headings& headings, Matching matching, Alignment alignment) {
   const Index n = last_of_first.rows();
@@ -118,19 +162,84 @@ BoundaryFit fit_boundary(const Eigen::Ref<const Points>& last_of_first, const Ei
     add(axes + std::numbers::pi);
   }
   const Eigen::Vector2d centre_a = centroid(last_of_first), centre_b = centroid(first_of_second);
-
-  double best = std::numeric_limits<double>::infinity();
-  std::set<std::vector<std::size_t>> refined;  // matchings already aligned (from any start): same continuation
-  Points matched(n, 2), moved(n, 2);
-  for (std::size_t s = 0; s < angles.size(); ++s) {
+  auto start = [&](std::size_t s) {
     Eigen::Isometry2d m = Eigen::Isometry2d::Identity();
     if (s > 0 || matching == Matching::centred) {
       m.linear() = Eigen::Rotation2Dd(angles[s]).toRotationMatrix();
       m.translation() = centre_a - m.linear() * centre_b;
     }
-    ++fit.starts;
+    return m;
+  };
+  fit.starts = angles.size();
+
+  // Screening: every start's nearest-neighbour fit. Then the paper's single matching and alignment in the
+  // option's own frame (one round, so the result is never farther than it), and the exact refinement from the
+  // best-scoring nearest-neighbour fit.
+  std::vector<Eigen::Isometry2d> exact{start(0)};
+  std::vector<double> exact_angle{0.0};
+  std::vector<int> exact_rounds{alignment == Alignment::rigid ? 1 : max_rounds};
+  // How well an alignment continues G's heading: the cosine between G's last step and the aligned G′'s first
+  // (0 when either group stands still: then it decides nothing).
+  const bool moving = headings.first.norm() > 0 && headings.second.norm() > 0;
+  auto continuity = [&](const Eigen::Isometry2d& m) {
+    if (!moving) return 0.0;
+    return headings.first.normalized().dot((m.linear() * headings.second).normalized());
+  };
+  // Of fits (score, continuity), those that keep the group walking forward (within 90° of G's heading) when
+  // both groups move and any does, else all.
+  auto forward = [&](const std::vector<double>& cont) {
+    std::vector<std::size_t> pool;
+    for (std::size_t k = 0; k < cont.size(); ++k) {
+      if (!moving || cont[k] >= 0) pool.push_back(k);
+    }
+    if (pool.empty()) {
+      for (std::size_t k = 0; k < cont.size(); ++k) pool.push_back(k);
+    }
+    return pool;
+  };
+  // The least score of the pool (ties keep the earlier).
+  auto least = [&](const std::vector<double>& score, const std::vector<std::size_t>& pool) {
+    std::size_t chosen = pool.front();
+    for (std::size_t k : pool) {
+      if (score[k] < score[chosen] * (1 - better_than_earlier)) chosen = k;
+    }
+    return chosen;
+  };
+  if (alignment == Alignment::rigid) {
+    std::vector<NearestFit> screened;
+    std::vector<double> score, cont;
+    for (std::size_t s = 0; s < angles.size(); ++s) {
+      screened.push_back(nearest_fit(last_of_first, first_of_second, start(s), alignment));
+      score.push_back(screened.back().score);
+      cont.push_back(continuity(screened.back().alignment));
+    }
+    // Refined exactly: the forward fits scoring within screen_margin of the best of them (the screen is only a
+    // proxy of the matching's distance), one per rotation (10°).
+    const std::vector<std::size_t> pool = forward(cont);
+    const double bound = score[least(score, pool)] * (1 + screen_margin);
+    std::vector<double> rotations;
+    for (std::size_t k : pool) {
+      if (!(score[k] <= bound)) continue;
+      const double r = std::atan2(screened[k].alignment.linear()(1, 0), screened[k].alignment.linear()(0, 0));
+      if (std::any_of(rotations.begin(), rotations.end(), [&](double q) { return std::abs(wrapped(r - q)) < same_start; })) continue;
+      rotations.push_back(r);
+      exact.push_back(screened[k].alignment);
+      exact_angle.push_back(angles[k]);
+      exact_rounds.push_back(max_rounds);
+    }
+  }
+
+  // Each run's best fit; then the choice between them.
+  std::vector<BoundaryFit> runs(exact.size());
+  std::vector<double> run_cost(exact.size(), std::numeric_limits<double>::infinity()), run_cont(exact.size(), 0.0);
+  Points matched(n, 2), moved(n, 2);
+  for (std::size_t s = 0; s < exact.size(); ++s) {
+    Eigen::Isometry2d m = exact[s];
+    std::set<std::vector<std::size_t>> refined;  // matchings this run has aligned: a repeat ends it
+    double& best = run_cost[s];
+    BoundaryFit& fit_s = runs[s];
     double previous = std::numeric_limits<double>::infinity();
-    for (int round = 0; round < max_rounds; ++round) {
+    for (int round = 0; round < exact_rounds[s]; ++round) {
       for (Index i = 0; i < n; ++i) moved.row(i) = (m * Eigen::Vector2d(first_of_second.row(i).transpose())).transpose();
       Correspondence c = match_boundary(last_of_first, moved, Matching::world);
       ++fit.rounds;
@@ -141,15 +250,19 @@ BoundaryFit fit_boundary(const Eigen::Ref<const Points>& last_of_first, const Ei
       c.total_distance = cost;
       if (cost < best * (1 - better_than_earlier)) {
         best = cost;
-        fit.correspondence = std::move(c);
-        fit.alignment = m;
-        fit.start_rotation = angles[s];
+        fit_s.correspondence = std::move(c);
+        fit_s.alignment = m;
+        fit_s.start_rotation = exact_angle[s];
+        run_cont[s] = continuity(m);
       }
       if (!(cost < previous * (1 - falling))) break;
       previous = cost;
     }
   }
-  return fit;
+  const std::size_t chosen = least(run_cost, forward(run_cont));
+  runs[chosen].starts = fit.starts;
+  runs[chosen].rounds = fit.rounds;
+  return runs[chosen];
 }
 
 }  // namespace throng::stitch

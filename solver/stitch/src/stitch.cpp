@@ -1,4 +1,5 @@
 #include "text.h"
+#include "window.h"
 
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
@@ -38,19 +39,6 @@ Presence present_throughout(const CrowdMotion& crowd) {
   return p;
 }
 
-// Sample frames of a clip of `frames` frames, every `step` frames counted from the joint: from the last frame
-// backwards for G (joint_is_last), from the first forwards for G′; the outer frame and the window's edge (the
-// frame `window` ≤ frames − 1 from the joint, the first where f_a = 0) always. Increasing.
-std::vector<std::size_t> samples_from_joint(std::size_t frames, std::size_t step, std::size_t window, bool joint_is_last) {
-  std::vector<std::size_t> out;
-  for (std::size_t d = 0; d < frames; d += step) out.push_back(joint_is_last ? frames - 1 - d : d);
-  out.push_back(joint_is_last ? 0 : frames - 1);
-  out.push_back(joint_is_last ? frames - 1 - window : window);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
 Feature averaged(const Feature& a, const Feature& b) {
   Feature f = a;
   f.c = 0.5 * (a.c + b.c);
@@ -63,6 +51,9 @@ Feature averaged(const Feature& a, const Feature& b) {
 
 void validate(const Options& o) {
   if (o.sample_step == 0) throw ConfigError("sample_step is 0: expected a positive number of frames");
+  if (!(std::isfinite(o.blend_window) && o.blend_window >= 0)) {
+    throw ConfigError("blend_window " + detail::number(o.blend_window) + ": expected a duration ≥ 0 in seconds (0: automatic)");
+  }
   if (!(std::isfinite(o.features.min_length) && o.features.min_length > 0)) {
     throw ConfigError("features.min_length " + detail::number(o.features.min_length) + ": expected a length > 0 in metres");
   }
@@ -167,40 +158,33 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
   // Samples of the stitched clip and the window that is solved.
   report_to.update(0.1, "building the blended graph");
   start = Clock::now();
-  // W per side, never past the clip's outer frame (where f_a must reach 0: that frame is pinned at its input).
-  const std::size_t W1 = options.blend_window > 0 ? std::min(options.blend_window, t1 - 1) : t1 - 1;
-  const std::size_t W2 = options.blend_window > 0 ? std::min(options.blend_window, t2 - 1) : t2 - 1;
-  report.window_first = W1;
-  report.window_second = W2;
-  std::vector<std::size_t> samples = samples_from_joint(t1, options.sample_step, W1, true);
-  const std::size_t joint_sample = samples.size() - 1;
-  for (std::size_t f : samples_from_joint(t2, options.sample_step, W2, false)) {
-    if (f > 0) samples.push_back(J + f);
-  }
+  std::vector<double> times(T);
+  for (std::size_t F = 0; F < T; ++F) times[F] = F <= J ? first.times[F] : first.times[J] + (second.times[F - J] - second.times[0]);
+  // The window per side (seconds, never past the clip's outer frame, where f_a must reach 0: that frame is pinned
+  // at its input) and the samples.
+  const detail::SampledWindow window =
+      detail::sample_window(times, J, options.sample_step, options.blend_window, n, options.max_blend_vertices);
+  const std::vector<std::size_t>& samples = window.samples;
+  const std::size_t joint_sample = window.joint_sample;
+  report.window_first = window.first_frames;
+  report.window_second = window.second_frames;
+  report.window_first_s = window.first_s;
+  report.window_second_s = window.second_s;
+  report.window_limited = window.limited;
+  report.whole_clip_vertices = window.whole_vertices;
   report.samples = samples.size();
   // Ḡ at any stitched frame (Eq. 11). Unlike the aligned input, which jumps by the whole gap from J to J + 1, Ḡ
   // is continuous across the joint (G's side reaches the midpoint at J, G′'s side leaves it), and it equals the
   // input wherever f_a = 0.
   auto intermediate = [&](std::size_t F, std::size_t j) -> Eigen::Vector2d {
     if (F == J) return naive(J, j) + joint_shift[j];
-    if (F < J) return naive(F, j) + blend_weight(static_cast<double>(J - F), static_cast<double>(W1)) * joint_shift[j];
-    return naive(F, j) - blend_weight(static_cast<double>(F - J), static_cast<double>(W2)) * joint_shift[j];
+    if (F < J) return naive(F, j) + detail::window_weight(times[J] - times[F], window.first_s) * joint_shift[j];
+    return naive(F, j) - detail::window_weight(times[F] - times[J], window.second_s) * joint_shift[j];
   };
-  auto free_sample = [&](std::size_t g) {
-    const std::size_t F = samples[g];
-    if (F == 0 || F == T - 1) return false;
-    return F <= J ? J - F < W1 : F - J < W2;
-  };
-  std::size_t first_free = joint_sample, last_free = joint_sample;
-  while (first_free > 0 && free_sample(first_free - 1)) --first_free;
-  while (last_free + 1 < samples.size() && free_sample(last_free + 1)) ++last_free;
-  const std::size_t lo = first_free - 1, hi = last_free + 1;  // outer frames are never free: both exist
+  const std::size_t lo = window.first_solved, hi = window.last_solved;  // the pinned window edges
   const std::size_t L = hi - lo + 1;
   report.solved_samples = L;
   report.unknowns = 2 * L * n;
-
-  std::vector<double> times(T);
-  for (std::size_t F = 0; F < T; ++F) times[F] = F <= J ? first.times[F] : first.times[J] + (second.times[F - J] - second.times[0]);
 
   // Ḡ (Eq. 11) and the aligned input over the solved samples; vertex l·n + j is agent j at sample lo + l.
   Clip blended;
@@ -222,7 +206,23 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
       blended.positions.row(v) = intermediate(F, j).transpose();
     }
   }
-  const MotionGraph graph = build_motion_graph(blended, options.formation);
+  // Formation edits (by id of G, frames of the stitched clip) act at the solved samples in their range; one
+  // whose range holds none changes nothing here (it may at another joint).
+  FormationOptions formation = options.formation;
+  formation.edits.clear();
+  for (std::size_t k = 0; k < options.formation.edits.size(); ++k) {
+    const EdgeEdit& e = options.formation.edits[k];
+    for (std::int64_t id : {e.agent_a, e.agent_b}) {
+      if (blended.agent_of_id(id) < 0) {
+        throw ConfigError("formation.edits[" + std::to_string(k) + "]: agent " + std::to_string(id) +
+                          " is not among the first clip's agents present at all its frames");
+      }
+    }
+    const auto at = std::lower_bound(blended.frames.begin(), blended.frames.end(), e.first_frame);
+    if (at != blended.frames.end() && *at <= e.last_frame) formation.edits.push_back(e);
+  }
+  report.formation_edits = formation.edits.size();
+  const MotionGraph graph = build_motion_graph(blended, formation);
   FeatureSet features = compute_features(graph, options.features);  // spatial and spatiotemporal from Ḡ
 
   // Temporal features: G's before the joint, G′'s after, their average at the joint.
@@ -279,8 +279,9 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
     solved = edit::deform_with_features(features, blended.positions, pinned, targets, options.weights, options.solver);
   } catch (const linalg::SingularMatrixError& e) {
     throw NumericalError(std::string("stitch: the blended system is singular (") + e.what() +
-                         "): the pinned ends leave part of the graph free, for example an agent that stands still at "
-                         "both ends and is joined to no neighbour; shorten the window or raise formation.max_edge_length");
+                         "): nothing ties part of the graph to the pinned ends, for example an agent joined to no "
+                         "neighbour (a single agent, or formation.max_edge_length too short) while weights.alpha or "
+                         "weights.beta is 0; raise those weights or formation.max_edge_length");
   }
   report.factorization = solved.factorization;
   report.precompute_seconds = solved.precompute_seconds;

@@ -1,17 +1,16 @@
 #include "text.h"
 
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
+#include <system_error>
 
 namespace throng::stitch::detail {
 
 std::string number(double value) {
-  char buffer[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
+  // std::to_chars without a format: the shortest text that reads back as the same double, in fixed or
+  // scientific notation, whichever is shorter ("10", "0.3", "1250", "1e-06").
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return error == std::errc{} ? std::string(buffer, end) : std::string("?");
 }
 
 std::string seconds(double value) { return number(value) + " s"; }

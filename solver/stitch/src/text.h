@@ -7,7 +7,7 @@
 
 namespace throng::stitch::detail {
 
-/// Shortest text that reads back as the same double ("0.3", "12", "1e-06").
+/// Shortest text that reads back as the same double (std::to_chars: "0.3", "12", "1e-06").
 [[nodiscard]] std::string number(double value);
 /// "4.8 s"
 [[nodiscard]] std::string seconds(double value);

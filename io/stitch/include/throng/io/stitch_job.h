@@ -4,13 +4,19 @@
 //
 // Job keys (all optional; defaults shown):
 //
-//   blend_window: 30              # frames from the joint over which the formations morph (Eq. 11's window), per
-//                                 #   side, capped at each clip's length; 0: each clip's own length (the paper)
+//   blend_window: 0               # seconds from the joint over which the formations morph (Eq. 11's window), per
+//                                 #   side, capped at each clip's duration; 0: automatic — each clip's whole
+//                                 #   duration (the paper), shortened only when that exceeds max_blend_vertices
+//   max_blend_vertices: 60000     # the automatic window's budget: agents × solved samples (~20 kB each); 0: none
 //   matching: world               # world: match agents by distance where they are | centred: after moving both
 //                                 #   frames to their centroids
 //   alignment: rigid              # rigid (rotation + translation) | translation | none
 //   sample_step: 1                # graph samples every so many frames (counted from the joint)
-//   formation: {max_edge_length: 0}                               # Ḡ's Delaunay edges longer than this dropped
+//   formation:
+//     max_edge_length: 0          # Ḡ's Delaunay edges longer than this are dropped (0: keep all)
+//     edits:                      # as in the edit job, by agent id of the first clip, frames of the stitched
+//       - {add: [12, 17], frames: [200, 260]}   #   output (last may be `end`; default all); an edit acts at
+//       - {remove: [3, 4]}                      #   the solved samples of each joint's window it overlaps
 //   weights: {alpha: 1, beta: 1, alpha_prime: 1, beta_prime: 1}   # Eq. 4 and 9
 //   scale_compensation: true
 //   features: {min_length: 0.05, degenerate_ratio: 0.001}
@@ -55,7 +61,8 @@ struct StitchedCrowds {
 /// Writes /parameters/throng/stitch/joint_<k> (k from 1) for each joint: first_ids, second_ids int64[N] (the
 /// matching: agent of the clip so far, agent of the next clip), attributes frame (output frame of the joint),
 /// rotation (radians), translation [2] (metres, applied to the next clip), gap_rms, gap_max (metres), window
-/// [2] (frames), matching_distance (metres).
+/// [2] (frames from the joint to each window edge), window_seconds [2], attribute window_limited (1 when the
+/// automatic window was shortened to the budget), matching_distance (metres).
 void write_stitch_data(const h5::Group& throng_parameters, const StitchedCrowds& stitched);
 
 }  // namespace throng

@@ -19,13 +19,19 @@
 //     Ḡ's triangles) with these features.
 //
 // Decisions where the paper is open:
-//  * Window. W counts frames from the joint, per side, capped at each clip's length; 0 means the paper's choice,
-//    each clip's own length: t − 1 frames on G's side and t′ − 1 on G′'s, so that f_a reaches 0 exactly at the
-//    clip's outer frame. The default is a bounded window of 30 frames (Eq. 11 with the window as the span t):
-//    the solve covers every agent at every sample of the window, and its sparse factor grows about linearly with
-//    the samples times the agents (the frames are coupled in time, so the factor's separators are whole frames);
-//    blending two 300-frame clips of 1,000 agents whole needs a 600,000-vertex factor (> 17 GB), a 30-frame
-//    window 61,000 vertices (about 1 GB). Short clips are blended whole either way.
+//  * Window. W is a duration per side, in seconds from the joint (Eq. 11's Δt/t with the window as t), so that it
+//    means the same motion at any frame rate (30 frames would be 1.25 s at 24 fps but 0.25 s at 120 fps); it is
+//    capped at each clip's duration. The default (blend_window = 0) is the paper's and METHODS.md §1.1's: each
+//    clip's whole duration, f_a reaching 0 exactly at its outer frame — as long as the solve stays within
+//    max_blend_vertices (agents × solved samples, default 60,000: about 1.2 GB at the ~20 kB per vertex measured
+//    by bench/stitch). Beyond that budget the longest common window that fits is used (at least one sample
+//    step) and the report says so (window_limited); two 300-frame clips of 1,000 agents then blend over about
+//    29 frames per side.
+//    Reason: the solve covers every agent at every sample of the window, and its sparse factor grows faster
+//    than the samples × agents (the frames are coupled in time, so the factor's separators are whole frames):
+//    blending two 300-frame clips of 1,000 agents whole at every frame is a 600,000-vertex factor that needs
+//    more than 17 GB (killed on a 23 GB machine); 61,000 vertices (a 30-frame window) peak at 1.1 GB of heap,
+//    99,000 at 2.0 GB. Raising sample_step keeps the whole clips within the budget for longer (bench/stitch).
 //  * Pins. The system's position, rotation and scale need fixing. Frames where f_a = 0 (outside the window) keep
 //    their aligned input positions: they are pinned, and only the window between them is solved (one pinned
 //    sample of the outside on each side suffices, since features join adjacent samples only). The outer frame of
@@ -73,10 +79,12 @@ namespace throng::stitch {
 
 struct Options {
   std::size_t sample_step = 1;   ///< frames between graph samples (≥ 1)
-  std::size_t blend_window = 30;  ///< W in frames from the joint, per side (capped at the clip); 0 = each clip's own length
+  double blend_window = 0;        ///< W in seconds from the joint, per side (capped at each clip); 0: automatic
+  std::size_t max_blend_vertices = 60000;  ///< the automatic window's budget (agents × solved samples); 0: none
   Matching matching = Matching::world;
   Alignment alignment = Alignment::rigid;
-  FormationOptions formation;    ///< Ḡ's formation edges (long-edge threshold; edits by agent id of G)
+  FormationOptions formation;    ///< Ḡ's formation edges: long-edge threshold; edits by agent id of G and stitched
+                                 ///< frame, acting at the solved samples in their range
   FeatureOptions features;       ///< weight floor and degenerate-feature rule
   edit::FeatureWeights weights;  ///< α, β, α′, β′, scale compensation (Eq. 4, 9)
   linalg::SolverOptions solver;
@@ -99,9 +107,13 @@ struct Report {
   double rotation = 0;                 ///< radians, applied to G′
   Eigen::Vector2d translation{0, 0};   ///< metres, applied to G′ after the rotation
   double gap_rms = 0, gap_max = 0;     ///< metres between G's last and aligned G′'s first frame
-  std::size_t window_first = 0, window_second = 0;  ///< W used on each side (frames)
+  std::size_t window_first = 0, window_second = 0;  ///< frames from the joint to each window edge
+  double window_first_s = 0, window_second_s = 0;    ///< W used on each side (seconds)
+  bool window_limited = false;         ///< the automatic window was shortened to max_blend_vertices
+  std::size_t whole_clip_vertices = 0; ///< automatic window: agents × solved samples the whole clips would need
   std::size_t samples = 0, solved_samples = 0, unknowns = 0;
   std::size_t spatial_features = 0, temporal_features = 0, spatiotemporal_features = 0;
+  std::size_t formation_edits = 0;     ///< formation edits whose range holds a solved sample
   double max_change = 0;               ///< metres: largest move of a vertex from the aligned input
   std::string factorization;
   double matching_seconds = 0, graph_seconds = 0, precompute_seconds = 0, solve_seconds = 0;
@@ -116,7 +128,7 @@ struct Result {
 
 /// Stitches `first` then `second` (see above). Throws InputError for clips with fewer than 2 frames, no agent
 /// present throughout, or different agent counts; ConfigError for bad options; NumericalError when the system is
-/// singular (for example a single agent standing still at both pinned ends).
+/// singular (nothing ties some free samples to the pins: an agent with no formation neighbour while α or β is 0).
 [[nodiscard]] Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const Options& options,
                             Progress* progress = nullptr);
 
