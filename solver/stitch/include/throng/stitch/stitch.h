@@ -13,8 +13,8 @@
 //     frame. Temporal features are copied from G before J and from G′ after J; at J they are the average of G's
 //     feature at J − 1 and G′'s at J + 1 (the paper's linear interpolation at the midpoint). Spatial and
 //     spatiotemporal features come from the intermediate graph Ḡ (Eq. 11): w(J) averages G's last and G′'s first
-//     frame; before J, w(i) = v(i) + f_a(J − i) (w(J) − v(J)); after J, symmetrically with G′; with
-//     f_a(d) = 1 − 3 (d/W)² + 2 (d/W)³ for d < W and 0 beyond, W the blending window.
+//     frame; before J, w(i) = v(i) + f_a(t(J) − t(i)) (w(J) − v(J)); after J, symmetrically with G′; with
+//     f_a(d) = 1 − 3 (d/W)² + 2 (d/W)³ for d < W and 0 beyond, W the blending window in seconds.
 //  4. One solve of the section-1 system (throng/edit/feature_deformation.h: E1, then scale compensation E2 fitting
 //     Ḡ's triangles) with these features.
 //
@@ -31,7 +31,7 @@
 //    than the samples × agents (the frames are coupled in time, so the factor's separators are whole frames):
 //    blending two 300-frame clips of 1,000 agents whole at every frame is a 600,000-vertex factor that needs
 //    more than 17 GB (killed on a 23 GB machine); 61,000 vertices (a 30-frame window) peak at 1.1 GB of heap,
-//    99,000 at 2.0 GB. Raising sample_step keeps the whole clips within the budget for longer (bench/stitch).
+//    99,000 (49 frames) at 2.0 GB. Raising sample_step keeps the whole clips within the budget for longer (bench/stitch).
 //  * Pins. The system's position, rotation and scale need fixing. Frames where f_a = 0 (outside the window) keep
 //    their aligned input positions: they are pinned, and only the window between them is solved (one pinned
 //    sample of the outside on each side suffices, since features join adjacent samples only). The outer frame of
@@ -49,9 +49,10 @@
 //    neighbouring intervals are regular), plus each clip's outer frame and the window's edges J − W and J + W′
 //    (the first frames where f_a = 0, pinned: frames outside the window keep their input whatever the step).
 //    The output has every source frame: the samples' solved positions exactly; a frame F between them Ḡ(F)
-//    plus a not-a-knot spline (in time, through the samples of the solved window) of the displacement solved − Ḡ. The displacement is taken from Ḡ, not
-//    from the aligned input, because Ḡ is continuous across the joint while the input jumps there by the whole
-//    gap (a spline of solved − input would put that jump back between samples). The Editor interpolates its
+//    plus a not-a-knot spline (in time, through the samples of the solved window) of the displacement solved − Ḡ.
+//    The displacement is taken from Ḡ, not from the aligned input, because Ḡ is continuous across the joint
+//    while the input jumps there by the whole gap (a spline of solved − input put that jump back between
+//    samples: 54 m/s at sample_step 4 where the walkers' fastest was 1.2 m/s). The Editor interpolates its
 //    displacement with a natural spline; here not-a-knot, the end condition of throng's other resamplings
 //    (throng/timewarp/spline.h), since the displacement has no reason to stop curving at the window's ends.
 //  * Times: G's, then G′'s shifted so that its first frame falls on G's last (frame rates may differ; a time warp
