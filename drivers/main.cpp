@@ -4,6 +4,7 @@
 #include "command.h"
 #include "context.h"
 
+#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 
@@ -36,6 +37,7 @@ CLI::Validator whole_number() {
 int main(int argc, char** argv) {
   using namespace throng;
   install_interrupt_cleanup();
+  (void)choose_blas_kernels();  // before any BLAS call, so no result depends on which method ran first
 
   cli::Context context(argc, argv);
   CLI::App app{"throng " THRONG_VERSION " — solver backend for crowd animation.\n"

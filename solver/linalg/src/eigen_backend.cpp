@@ -10,20 +10,17 @@
 #include "backends.h"
 #include "blas_threads.h"
 
+#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseCholesky>
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -31,42 +28,6 @@
 
 namespace throng::linalg {
 namespace {
-
-// OpenBLAS built with DYNAMIC_ARCH picks its kernels from the CPU model at load time, and a release older than
-// the CPU falls back to its generic "Prescott" (SSE3) kernels: Debian 12's OpenBLAS 0.3.21 on the reference
-// machine's Xeon (family 6, model 207, AVX-512) does. CHOLMOD's supernodal factorisation spends its time in
-// zgemm/dgemm, which the Prescott kernels run 3× slower (measured: 300 agents × 300 samples, both steps'
-// factorisations 29 s → 10 s CPU). So, once per process, when OpenBLAS reports Prescott on a CPU with AVX-512
-// (or AVX2 + FMA), switch it to the newest kernel set the CPU runs: OpenBLAS's own OPENBLAS_CORETYPE mechanism,
-// re-run through its exported gotoblas_dynamic_quit/init. A user's OPENBLAS_CORETYPE is left alone; without
-// OpenBLAS (or without DYNAMIC_ARCH) the symbols are absent and nothing happens. The kernels change speed only
-// in the last bits: results stay deterministic for a given kernel set.
-void choose_blas_kernels() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (std::getenv("OPENBLAS_CORETYPE") != nullptr) return;
-    using Name = char* (*)();
-    using Call = void (*)();
-    const auto corename = reinterpret_cast<Name>(dlsym(RTLD_DEFAULT, "openblas_get_corename"));
-    const auto quit = reinterpret_cast<Call>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
-    const auto init = reinterpret_cast<Call>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
-    if (corename == nullptr || quit == nullptr || init == nullptr) return;
-    const char* current = corename();
-    if (current == nullptr || std::strcmp(current, "Prescott") != 0) return;
-    __builtin_cpu_init();
-    const char* better = nullptr;
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512cd")) {
-      better = "SkylakeX";
-    } else if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
-      better = "Haswell";
-    }
-    if (better == nullptr) return;
-    setenv("OPENBLAS_CORETYPE", better, 0);
-    quit();
-    init();
-  });
-}
 
 // A factor whose (min/max diagonal)² is below this is treated as singular. Exact arithmetic would give a zero
 // pivot; rounding leaves one near ε·‖Q‖, i.e. a ratio near 1e-16 .. 1e-30. Well-posed editing systems of a
@@ -425,7 +386,7 @@ class EigenSpdSolver final : public SpdSolver {
 }  // namespace
 
 std::unique_ptr<SpdSolver> make_eigen_solver(const SolverOptions& options) {
-  choose_blas_kernels();
+  (void)choose_blas_kernels();  // the fast kernels for CHOLMOD's dense fronts (core/blas_kernels.h)
   return std::make_unique<EigenSpdSolver>(options);
 }
 
