@@ -30,6 +30,13 @@ struct Tiled {
 /// The work shared by `throng tile` and the `tile` step of `throng run`.
 Tiled tile_crowd(TilingJob job, Context& context) {
   job.options.seed = context.global.seed;
+  const Region& region = *job.environment.scene.region;
+  if (region.periodic[0] && region.periodic[1] && region.periodic[2] && job.environment.sources.empty() &&
+      job.environment.sinks.empty()) {
+    context.warn("tile: the region is periodic in x, y and t and has no source or sink: no character can leave it, so "
+                 "every one must close a loop; the search closes most (bridges, dropping open groups) but may stop "
+                 "with dangling ends. More chains, fewer characters, or one axis left open make it reliable");
+  }
   auto result = std::make_shared<tiling::TilingResult>(
       tiling::tile(job.library, job.environment, job.keyframes, job.options, context.progress()));
   auto laid = std::make_shared<tiling::Characters>(

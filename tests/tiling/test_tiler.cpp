@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <set>
 #include <sstream>
 
 using namespace throng;
@@ -252,5 +253,82 @@ TEST_CASE("a repeating tile laid 2 × 2 gives characters that walk on across the
     if (last == m.frame_count()) continue;
     const Eigen::Vector3d p = m.position(last - 1, n);
     CHECK(std::min({p.x(), p.y(), 16 - p.x(), 16 - p.y()}) < 0.2);
+  }
+}
+
+TEST_CASE("a tile periodic in time laid twice in time gives characters that walk on across the time seam") {
+  const PatchLibrary lib = small_library();
+  NoProgress quiet;
+  for (const std::array<bool, 3> periodic : {std::array<bool, 3>{false, false, true}, std::array<bool, 3>{true, false, true}}) {
+    INFO("periodic x " << periodic[0]);
+    const Environment env = box(8, 8, 8, periodic);
+    const Options o = quick_options(6);
+    const TilingResult r = tile(lib, env, {}, o, quiet);
+    const CheckReport c = check_tiling(lib, r.tiling, env, check_options(o));
+    INFO(failures(c));
+    REQUIRE(c.perfect());
+    std::size_t time_seams = 0;
+    for (const Connection& k : r.tiling.connections) time_seams += k.image[2] != 0;
+    REQUIRE(time_seams > 0);
+
+    const std::array<int, 3> repeat{periodic[0] ? 2 : 1, 1, 2};
+    const Characters laid = lay_out(lib, r.tiling, *env.scene.region, LayoutOptions{10.0, repeat});
+    const CrowdMotion& m = laid.motion;
+    // Frames 0, 0.1, ..., 15.9 s: the last frame of a periodic time axis is the first of the next copy.
+    REQUIRE(m.frame_count() == 160);
+    CHECK(std::abs(m.times.back() - 15.9) < 1e-9);
+    double fastest = 0;
+    for (const Instance& i : r.tiling.instances) {
+      for (const Path& p : i.paths) {
+        for (std::size_t s = 0; s + 1 < p.times.size(); ++s) {
+          fastest = std::max(fastest, (p.positions[s + 1] - p.positions[s]).norm() / (p.times[s + 1] - p.times[s]));
+        }
+      }
+    }
+    std::size_t across = 0;
+    for (std::size_t n = 0; n < m.agent_count(); ++n) {
+      for (std::size_t f = 0; f + 1 < m.frame_count(); ++f) {
+        if (!m.present(f, n) || !m.present(f + 1, n)) continue;
+        CHECK((m.position(f + 1, n) - m.position(f, n)).norm() <= fastest * 0.1 + 1e-9);
+      }
+      across += m.present(79, n) && m.present(80, n);  // 7.9 s and 8.0 s: the seam between the time copies
+      // An agent ends before the last frame only by leaving the box across a side that is not periodic.
+      const auto [first, last] = m.presence_span(n);
+      if (last == m.frame_count()) continue;
+      const Eigen::Vector3d p = m.position(last - 1, n);
+      const double width = 8.0 * repeat[0];  // the laid box: its outer sides, whether periodic or not
+      const double to_side = std::min({p.x(), p.y(), width - p.x(), 8 - p.y()});
+      CHECK(to_side < 0.2);
+    }
+    CHECK(across > 0);
+  }
+}
+
+TEST_CASE("lay_out follows a loop closed across the time seam as one agent through every time copy") {
+  // Four waits at one spot, 2 s each, the last exit (8 s) stitched to the first entry (0 s) one period later.
+  const PatchLibrary lib = builtin_library({"wait"});
+  const Environment env = box(8, 8, 8, {false, false, true});
+  Tiling t;
+  for (int k = 0; k < 4; ++k) {
+    t.instances.push_back(placed(lib, 0, {4, 4}, 0.0, 1.0 + 2.0 * k));
+    t.connections.push_back({{static_cast<std::uint32_t>(k), 0}, {static_cast<std::uint32_t>((k + 1) % 4), 0},
+                             {0, 0, k == 3 ? 1 : 0}});
+  }
+  REQUIRE(check_tiling(lib, t, env, CheckOptions{}).perfect());
+  CHECK(count_characters(lib, t) == 1);  // a closed loop: no head, counted once
+  const Characters laid = lay_out(lib, t, *env.scene.region, LayoutOptions{10.0, {1, 1, 3}});
+  REQUIRE(laid.motion.agent_count() == 1);
+  REQUIRE(laid.motion.frame_count() == 240);
+  for (std::size_t f = 0; f < 240; ++f) {
+    REQUIRE(laid.motion.present(f, 0));
+    CHECK((laid.motion.position(f, 0) - Eigen::Vector3d(4, 4, 0)).norm() < 1e-9);
+  }
+  // The agent walks through every fragment of every time copy it is present in: 4 fragments × 3 copies, and
+  // the first fragment of the copy before (its end at 0 s) and of the copy after (its start at 24 s) overlap
+  // the laid span at a single instant each.
+  std::set<std::pair<std::uint32_t, int>> copies;
+  for (const AgentPiece& p : laid.pieces[0]) copies.insert({p.fragment.instance, p.copy[2]});
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    for (int c = 0; c < 3; ++c) CHECK(copies.contains({i, c}));
   }
 }

@@ -37,6 +37,27 @@ void EndIndex::remove(FragmentRef ref, bool is_exit, const EndPoint& end) {
   assert(false && "EndIndex::remove: the end is not indexed where it was inserted");
 }
 
+void EndIndex::near(const EndPoint& q, bool want_exits, double radius_m, double dt_lo, double dt_hi,
+                     std::vector<EndMatch>& out) const {
+  const auto& cells = want_exits ? exits_ : entries_;
+  grid_.for_each_cell(q.position.x() - radius_m, q.position.x() + radius_m, q.position.y() - radius_m,
+                      q.position.y() + radius_m, q.time + dt_lo, q.time + dt_hi, [&](std::size_t cell) {
+                        for (const Entry& e : cells[cell]) {
+                          // The image of e nearest to q (in time: nearest to the window's middle).
+                          const double mid = q.time + 0.5 * (dt_lo + dt_hi);
+                          const std::array<int, 3> image{nearest_image(q.position.x() - e.end.position.x(), periods_.p[0]),
+                                                         nearest_image(q.position.y() - e.end.position.y(), periods_.p[1]),
+                                                         nearest_image(mid - e.end.time, periods_.p[2])};
+                          const Eigen::Vector2d at =
+                              e.end.position + Eigen::Vector2d(image[0] * periods_.p[0], image[1] * periods_.p[1]);
+                          const double dt = e.end.time + image[2] * periods_.p[2] - q.time;
+                          const double dist = (at - q.position).norm();
+                          if (dist > radius_m || dt < dt_lo || dt > dt_hi) continue;
+                          out.push_back({e.ref, image, dist});
+                        }
+                      });
+}
+
 void EndIndex::matches(const EndPoint& q, bool want_exits, std::vector<EndMatch>& out) const {
   const double d = match_.distance_m, dt = match_.time_s;
   const auto& cells = want_exits ? exits_ : entries_;

@@ -49,6 +49,12 @@ class EndIndex {
   /// thresholds on the nearest image), appended to `out` in no particular order.
   void matches(const EndPoint& query, bool want_exits, std::vector<EndMatch>& out) const;
 
+  /// Dangling ends of the side `want_exits` whose nearest image lies within `radius_m` of `query` and whose
+  /// time, on that image, lies in [query.time + dt_lo, query.time + dt_hi], with the image; same pose class not
+  /// required. The candidates a bridge patch (one end on `query`, the other on the found end) could join.
+  void near(const EndPoint& query, bool want_exits, double radius_m, double dt_lo, double dt_hi,
+            std::vector<EndMatch>& out) const;
+
   [[nodiscard]] std::size_t size() const noexcept { return size_; }
 
  private:

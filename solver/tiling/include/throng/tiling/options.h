@@ -76,6 +76,12 @@ struct SearchOptions {
   double jitter_time_start_s = 0.3;
   double jitter_time_end_s = 0.5;
   std::size_t jitter_attempts = 12;   ///< i_max of Algorithm 2: placements tried per candidate (the first unjittered)
+  /// Bridge candidates (search.cpp) tried per dangling end before Algorithm 2's own: patches that would join
+  /// it to another dangling end at once. 0: the paper's search alone.
+  std::size_t bridge_attempts = 8;
+  /// On a tile periodic on every axis: sweeps in a row without fewer dangling ends before an open character is
+  /// dropped (search.cpp).
+  std::size_t stale_sweeps = 3;
   std::size_t max_steps = 400000;     ///< cap on candidate placements tried in all; reaching it ends the search
 };
 

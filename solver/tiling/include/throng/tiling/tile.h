@@ -21,6 +21,10 @@
 //   candidate so that its matching end lands exactly on the dangling end, tries it unjittered and then jittered
 //   (the jitter range grows with the attempt), and requires every attempt not to raise the dangling count.
 //   History: a removed instance's (type, fragment, anchor end) is never proposed again at that end.
+//   Our additions (search.cpp): bridges, patches fitted between d and another dangling end to join both at once,
+//   tried before removing d's patch (before the candidates on a tile periodic on every axis, where no end can
+//   leave by a side); and on such a tile, after sweeps that lower nothing, the smallest connected group of
+//   patches holding a dangling end is dropped whole (at most half the tiling; never a keyframe).
 // - Validity: no two character or prop capsules of different instances closer than the sum of their radii at
 //   any time (exact closest approach of the linearly interpolated paths, continuous in time), except the two
 //   fragments a connection joins (the same character); no capsule closer to an obstacle than its radius at the
