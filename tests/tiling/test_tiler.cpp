@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -331,4 +332,36 @@ TEST_CASE("lay_out follows a loop closed across the time seam as one agent throu
   for (std::uint32_t i = 0; i < 4; ++i) {
     for (int c = 0; c < 3; ++c) CHECK(copies.contains({i, c}));
   }
+}
+
+TEST_CASE("phase 2 tries the candidates at a dangling end in the order of the preference (Eq. 7)") {
+  // One keyframed walk in an empty box, no phase 1: phase 2 continues its exit and entry with the first
+  // candidate that fits, which in empty space is the first in preference order (ties: library order). The
+  // library lists walk_fast ("fast"), walk_slow ("slow"), walk (no label: cost 0), so only the label costs can
+  // put walk first.
+  const PatchLibrary lib = builtin_library({"walk_fast", "walk_slow", "walk"});
+  const Environment env = box(30, 30, 12);
+  Keyframe k;
+  k.type = lib.find("walk");
+  k.transform.translation = {15, 15};
+  k.transform.time_shift = 6;
+  NoProgress quiet;
+  const auto neighbours = [&](const std::map<std::string, double>& costs) {
+    Options o = quick_options(2, 1);
+    o.annealing.max_failures = 0;
+    o.preference.label_costs = costs;
+    const TilingResult r = tile(lib, env, {k}, o, quiet);
+    REQUIRE(r.report.perfect());
+    std::vector<std::string> types;
+    for (const Connection& c : r.tiling.connections) {
+      if (c.from.instance == 0) types.push_back(lib.types[r.tiling.instances[c.to.instance].type].name);
+      if (c.to.instance == 0) types.push_back(lib.types[r.tiling.instances[c.from.instance].type].name);
+    }
+    return types;
+  };
+  using Names = std::vector<std::string>;
+  CHECK(neighbours({}) == Names{"walk_fast", "walk_fast"});
+  CHECK(neighbours({{"fast", 3.0}}) == Names{"walk_slow", "walk_slow"});
+  CHECK(neighbours({{"fast", 3.0}, {"slow", 3.0}}) == Names{"walk", "walk"});
+  CHECK(neighbours({{"fast", 3.0}, {"slow", 1.0}}) == Names{"walk", "walk"});
 }
