@@ -120,4 +120,13 @@ CrowdMotion random_crowd(std::size_t agents, std::size_t frames, double extent, 
   return crowd;
 }
 
+std::vector<Obstacle> scattered_obstacles() {
+  std::vector<Obstacle> out;
+  out.push_back({Circle{{5, 5}, 1.5}, {}, "post"});
+  out.push_back({ConvexPolygon{{{10, 2}, {13, 2}, {12, 6}}}, {}, "block"});
+  out.push_back({Wall{{1, 12}, {14, 13}, 0.3}, {}, "wall"});
+  out.push_back({Circle{{0, 0}, 1.0}, {{0.0, {2, 8}, 0.0}, {3.0, {12, 9}, 0.0}}, "moving post"});
+  return out;
+}
+
 }  // namespace throng::collide::scenes

@@ -36,4 +36,8 @@ struct CollideScene {
 /// 0.2–0.35 m, some absent at the start or the end (entering and leaving); deterministic in `seed`.
 [[nodiscard]] CrowdMotion random_crowd(std::size_t agents, std::size_t frames, double extent, double step, std::uint64_t seed);
 
+/// Four obstacles among random_crowd(…, extent 15, …): a post, a triangle, a thick wall and a post moving along
+/// keyframes over the first 3 s.
+[[nodiscard]] std::vector<Obstacle> scattered_obstacles();
+
 }  // namespace throng::collide::scenes

@@ -1,6 +1,7 @@
 // The broad phase reports exactly the all-pairs set (same pairs, same moments, same values), whatever the
 // thread count, and agrees with brute-force sampling.
 #include "checker.h"
+#include "same_contacts.h"
 #include "scenes.h"
 
 #include <throng/collide/broad_phase.h>
@@ -15,35 +16,8 @@ using namespace throng::collide;
 
 namespace {
 
-void require_equal(const Contacts& x, const Contacts& y) {
-  REQUIRE(x.pairs.size() == y.pairs.size());
-  for (std::size_t k = 0; k < x.pairs.size(); ++k) {
-    const PairContact &p = x.pairs[k], &q = y.pairs[k];
-    REQUIRE(p.a == q.a);
-    REQUIRE(p.b == q.b);
-    REQUIRE(p.interval == q.interval);
-    REQUIRE(p.s == q.s);
-    REQUIRE(p.distance == q.distance);
-    REQUIRE(p.offset == q.offset);
-  }
-  REQUIRE(x.obstacles.size() == y.obstacles.size());
-  for (std::size_t k = 0; k < x.obstacles.size(); ++k) {
-    const ObstacleContact &p = x.obstacles[k], &q = y.obstacles[k];
-    REQUIRE(p.agent == q.agent);
-    REQUIRE(p.obstacle == q.obstacle);
-    REQUIRE(p.interval == q.interval);
-    REQUIRE(p.signed_distance == q.signed_distance);
-  }
-}
-
-std::vector<Obstacle> scattered_obstacles() {
-  std::vector<Obstacle> out;
-  out.push_back({Circle{{5, 5}, 1.5}, {}, "post"});
-  out.push_back({ConvexPolygon{{{10, 2}, {13, 2}, {12, 6}}}, {}, "block"});
-  out.push_back({Wall{{1, 12}, {14, 13}, 0.3}, {}, "wall"});
-  out.push_back({Circle{{0, 0}, 1.0}, {{0.0, {2, 8}, 0.0}, {3.0, {12, 9}, 0.0}}, "moving post"});
-  return out;
-}
+using check::require_same_contacts;
+using scenes::scattered_obstacles;
 
 }  // namespace
 
@@ -57,7 +31,7 @@ TEST_CASE("broad phase equals all pairs on random crowds") {
       const Contacts all = find_contacts(crowd, obstacles, margin, BroadPhase::all_pairs);
       REQUIRE(grid.pairs.size() > 10);
       REQUIRE(!grid.obstacles.empty());
-      require_equal(grid, all);
+      require_same_contacts(grid, all);
       if (all.min_pair_gap < margin) CHECK(grid.min_pair_gap == all.min_pair_gap);
     }
   }
@@ -94,7 +68,7 @@ TEST_CASE("broad phase restricted to flagged agents equals the filtered all-pair
   std::erase_if(expected.pairs, [&](const PairContact& c) { return flags[c.a] == 0 && flags[c.b] == 0; });
   std::erase_if(expected.obstacles, [&](const ObstacleContact& c) { return flags[c.agent] == 0; });
   REQUIRE(!expected.pairs.empty());
-  require_equal(some, expected);
+  require_same_contacts(some, expected);
 }
 
 TEST_CASE("broad phase does not depend on the thread count") {
@@ -108,7 +82,7 @@ TEST_CASE("broad phase does not depend on the thread count") {
     ThreadLimit limit(2);
     two = find_contacts(crowd, scattered_obstacles(), 0.1);
   }
-  require_equal(one, two);
+  require_same_contacts(one, two);
   CHECK(one.min_pair_gap == two.min_pair_gap);
   CHECK(one.min_obstacle_gap == two.min_obstacle_gap);
 }

@@ -1,5 +1,7 @@
 #include <throng/collide/broad_phase.h>
-#include <throng/collide/narrow_phase.h>
+
+#include "segments.h"
+
 #include <throng/core/parallel.h>
 
 #include <algorithm>
@@ -11,16 +13,10 @@
 namespace throng::collide {
 namespace {
 
-using Vec = Eigen::Vector2d;
-
-Vec xy(const CrowdMotion& crowd, std::size_t frame, std::size_t agent) {
-  const double* p = crowd.positions.data() + crowd.index(frame, agent);
-  return {p[0], p[1]};
-}
-
-bool has_segment(const CrowdMotion& crowd, std::size_t interval, std::size_t agent) {
-  return crowd.present(interval, agent) && crowd.present(interval + 1, agent);
-}
+using detail::Box;
+using detail::has_segment;
+using detail::Vec;
+using detail::xy;
 
 // What one interval found: its contacts and its smallest gap.
 struct IntervalPairs {
@@ -31,14 +27,8 @@ struct IntervalPairs {
 
 // The narrow phase of one pair over one interval, recording a contact when the clearance is violated.
 void examine(const CrowdMotion& crowd, std::size_t interval, std::size_t a, std::size_t b, double margin, IntervalPairs& out) {
-  const Approach approach =
-      closest_approach(xy(crowd, interval, a), xy(crowd, interval + 1, a), xy(crowd, interval, b), xy(crowd, interval + 1, b));
-  const double radii = crowd.radii[a] + crowd.radii[b];
-  out.min_gap = std::min(out.min_gap, approach.distance - radii);
-  const double clearance = radii + margin;
-  if (out.record && approach.distance < clearance) {
-    out.contacts.push_back({a, b, interval, approach.s, approach.distance, clearance, approach.offset});
-  }
+  PairContact contact;
+  if (detail::examine_pair(crowd, interval, a, b, margin, contact, out.min_gap) && out.record) out.contacts.push_back(contact);
 }
 
 bool wanted(const std::vector<char>& agents, std::size_t a, std::size_t b) {
@@ -59,9 +49,6 @@ void all_pairs_interval(const CrowdMotion& crowd, std::size_t interval, double m
 void grid_interval(const CrowdMotion& crowd, std::size_t interval, double margin, const std::vector<char>& agents,
                    IntervalPairs& out) {
   const std::size_t n = crowd.agent_count();
-  struct Box {
-    Vec lo, hi;
-  };
   std::vector<Box> boxes(n);
   std::vector<std::size_t> members;
   members.reserve(n);
@@ -69,9 +56,7 @@ void grid_interval(const CrowdMotion& crowd, std::size_t interval, double margin
   Vec origin(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
   for (std::size_t a = 0; a < n; ++a) {
     if (!has_segment(crowd, interval, a)) continue;
-    const Vec p0 = xy(crowd, interval, a), p1 = xy(crowd, interval + 1, a);
-    const double widen = crowd.radii[a] + 0.5 * margin;
-    boxes[a] = {p0.cwiseMin(p1).array() - widen, p0.cwiseMax(p1).array() + widen};
+    boxes[a] = detail::segment_box(crowd, interval, a, crowd.radii[a] + 0.5 * margin);
     cell = std::max(cell, (boxes[a].hi - boxes[a].lo).maxCoeff());
     origin = origin.cwiseMin(boxes[a].lo);
     members.push_back(a);
@@ -98,7 +83,7 @@ void grid_interval(const CrowdMotion& crowd, std::size_t interval, double margin
       for (std::size_t k = j + 1; k < end; ++k) {
         const std::size_t a = entries[j].second, b = entries[k].second;  // a < b: sorted within a cell
         const Box &A = boxes[a], &B = boxes[b];
-        if (A.lo.x() > B.hi.x() || B.lo.x() > A.hi.x() || A.lo.y() > B.hi.y() || B.lo.y() > A.hi.y()) continue;
+        if (!A.overlaps(B)) continue;
         // Examine the pair once: in the cell holding the lower-left corner of the overlap.
         const Vec corner = A.lo.cwiseMax(B.lo);
         if (key_of(cell_of(corner.x(), origin.x()), cell_of(corner.y(), origin.y())) != entries[begin].first) continue;
@@ -123,18 +108,11 @@ std::vector<PairContact> gather_pairs(std::vector<IntervalPairs>& per_interval) 
 void agent_obstacles(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles,
                      const std::vector<std::vector<Eigen::AlignedBox2d>>& obstacle_bounds, std::size_t agent, double margin,
                      std::vector<ObstacleContact>* out, double& min_gap) {
-  const double r = crowd.radii[agent];
-  const double clearance = r + margin;
   for (std::size_t o = 0; o < obstacles.size(); ++o) {
     for (std::size_t i = 0; i + 1 < crowd.frame_count(); ++i) {
-      if (!has_segment(crowd, i, agent)) continue;
-      const Vec p0 = xy(crowd, i, agent), p1 = xy(crowd, i + 1, agent);
-      const Eigen::AlignedBox2d& box = obstacle_bounds[o][i];
-      const Vec lo = p0.cwiseMin(p1).array() - clearance, hi = p0.cwiseMax(p1).array() + clearance;
-      if (lo.x() > box.max().x() || box.min().x() > hi.x() || lo.y() > box.max().y() || box.min().y() > hi.y()) continue;
-      const Penetration p = deepest_penetration(obstacles[o], p0, p1, crowd.times[i], crowd.times[i + 1]);
-      min_gap = std::min(min_gap, p.signed_distance - r);
-      if (out != nullptr && p.signed_distance < clearance) out->push_back({agent, o, i, p.s, p.signed_distance, clearance});
+      if (has_segment(crowd, i, agent)) {
+        detail::examine_obstacle(crowd, obstacles[o], o, obstacle_bounds[o][i], agent, i, margin, out, min_gap);
+      }
     }
   }
 }
@@ -159,10 +137,7 @@ Contacts find_contacts(const CrowdMotion& crowd, const std::vector<Obstacle>& ob
   out.pairs = gather_pairs(per_interval);
 
   if (!obstacles.empty()) {
-    std::vector<std::vector<Eigen::AlignedBox2d>> bounds(obstacles.size(), std::vector<Eigen::AlignedBox2d>(intervals));
-    for (std::size_t o = 0; o < obstacles.size(); ++o) {
-      for (std::size_t i = 0; i < intervals; ++i) bounds[o][i] = bounds_over(obstacles[o], crowd.times[i], crowd.times[i + 1]);
-    }
+    const auto bounds = detail::obstacle_bounds(crowd, obstacles);
     const std::size_t n = crowd.agent_count();
     std::vector<std::vector<ObstacleContact>> per_agent(n);
     std::vector<double> gaps(n, std::numeric_limits<double>::infinity());
@@ -191,10 +166,7 @@ Gaps smallest_gaps(const CrowdMotion& crowd, const std::vector<Obstacle>& obstac
   });
   for (const auto& found : per_interval) out.pair = std::min(out.pair, found.min_gap);
   if (!obstacles.empty()) {
-    std::vector<std::vector<Eigen::AlignedBox2d>> bounds(obstacles.size(), std::vector<Eigen::AlignedBox2d>(intervals));
-    for (std::size_t o = 0; o < obstacles.size(); ++o) {
-      for (std::size_t i = 0; i < intervals; ++i) bounds[o][i] = bounds_over(obstacles[o], crowd.times[i], crowd.times[i + 1]);
-    }
+    const auto bounds = detail::obstacle_bounds(crowd, obstacles);
     std::vector<double> gaps(crowd.agent_count(), std::numeric_limits<double>::infinity());
     parallel_for(crowd.agent_count(), 8, [&](std::size_t begin, std::size_t end) {
       for (std::size_t a = begin; a < end; ++a) agent_obstacles(crowd, obstacles, bounds, a, reach, nullptr, gaps[a]);
@@ -207,6 +179,15 @@ Gaps smallest_gaps(const CrowdMotion& crowd, const std::vector<Obstacle>& obstac
 }  // namespace throng::collide
 
 namespace throng::collide {
+
+void detail::sort_contacts(Contacts& contacts) {
+  std::sort(contacts.pairs.begin(), contacts.pairs.end(), [](const PairContact& x, const PairContact& y) {
+    return std::tie(x.a, x.b, x.interval) < std::tie(y.a, y.b, y.interval);
+  });
+  std::sort(contacts.obstacles.begin(), contacts.obstacles.end(), [](const ObstacleContact& x, const ObstacleContact& y) {
+    return std::tie(x.agent, x.obstacle, x.interval) < std::tie(y.agent, y.obstacle, y.interval);
+  });
+}
 
 std::size_t Contacts::pair_count() const noexcept {
   std::size_t n = 0;

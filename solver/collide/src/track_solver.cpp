@@ -1,5 +1,7 @@
 #include "track_solver.h"
 
+#include "band_cholesky.h"
+
 #include <throng/core/errors.h>
 #include <throng/graph/features.h>
 #include <throng/linalg/least_squares.h>
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -148,37 +151,245 @@ Displacement to_displacement(Index length, const std::vector<Index>& unknown_of,
   return d;
 }
 
-// --- banded: LLᵀ of the band, exact Schur complement over the constraint rows ---
-class BandedSolver final : public TrackSolver {
- public:
-  BandedSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
-      : length_(positions.rows()) {
-    Objective o = make_objective(positions, pinned, options);
-    free_of_ = std::move(o.free_of);
-    unknown_of_ = std::move(o.unknown_of);
-    n_ = static_cast<Index>(unknown_of_.size());
-    // Q = AᵀWA over the free unknowns, copied into the band (free numbering keeps the natural order, so the
-    // half-bandwidth stays ≤ 5).
-    Sparse selection(2 * length_, n_);
-    std::vector<Triplet> pick;
-    for (Index f = 0; f < n_; ++f) pick.emplace_back(unknown_of_[static_cast<std::size_t>(f)], f, 1.0);
-    selection.setFromTriplets(pick.begin(), pick.end());
-    const Sparse AF = o.A * selection;
-    const Sparse Q = AF.transpose() * o.weights.asDiagonal() * AF;
-    band_.assign(static_cast<std::size_t>(n_ * (p + 1)), 0.0);
-    for (Index j = 0; j < Q.outerSize(); ++j) {
-      for (Sparse::InnerIterator it(Q, j); it; ++it) {
-        if (it.row() >= j && it.row() - j <= p) L(it.row(), j) = it.value();
-      }
+// Q = AᵀWA over the free unknowns as a band (the free numbering keeps the natural order, so the half-bandwidth
+// stays ≤ 5: a vertex couples with two neighbours on each side), with the objective's maps.
+struct BandedObjective {
+  BandCholesky Q;
+  std::vector<Index> free_of, unknown_of;
+};
+
+BandedObjective banded_objective(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned,
+                                 const Options& options) {
+  constexpr Index p = 5;
+  Objective o = make_objective(positions, pinned, options);
+  BandedObjective b;
+  b.free_of = std::move(o.free_of);
+  b.unknown_of = std::move(o.unknown_of);
+  const auto n = static_cast<Index>(b.unknown_of.size());
+  Sparse selection(o.A.cols(), n);
+  std::vector<Triplet> pick;
+  for (Index f = 0; f < n; ++f) pick.emplace_back(b.unknown_of[static_cast<std::size_t>(f)], f, 1.0);
+  selection.setFromTriplets(pick.begin(), pick.end());
+  const Sparse AF = o.A * selection;
+  const Sparse Q = AF.transpose() * o.weights.asDiagonal() * AF;
+  b.Q.reset(n, p);
+  for (Index j = 0; j < Q.outerSize(); ++j) {
+    for (Sparse::InnerIterator it(Q, j); it; ++it) {
+      if (it.row() >= j && it.row() - j <= p) b.Q.at(it.row(), j) = it.value();
     }
-    factorize();
+  }
+  return b;
+}
+
+void factorize_or_throw(BandCholesky& band, const std::string& what) {
+  Index failed_at = 0;
+  if (!band.factorize(failed_at)) {
+    throw NumericalError("collide: a trajectory's " + what + " (" + std::to_string(band.size()) +
+                         " unknowns) is not positive definite at unknown " + std::to_string(failed_at));
+  }
+}
+
+// --- eliminate: each push row solved for one of its unknowns, the rest solved in a window ---
+//
+// A row c_e x_e + c_o x_o = t is met by x_e = t/c_e − (c_o/c_e) x_o, where e is the unknown with the larger
+// |c| (so |c_o/c_e| ≤ 1: no growth); a row on one unknown fixes it. With every free unknown in at most one row,
+// x = Z y + x0, Z identity on the kept unknowns y and one entry −c_o/c_e on an eliminated row; the constrained
+// minimiser is y = H⁻¹ g with H = ZᵀQZ, g = −ZᵀQ x0. H is SPD (Z has full column rank) and a band: an
+// eliminated unknown's couplings move to its partner, a vertex away (half-bandwidth at most 9).
+//
+// H differs from Q only in the window W = [lo − 5, hi + 5] around the constrained unknowns lo .. hi, and g is
+// zero outside it. So with T the unknowns before W and B those after: Q = L Lᵀ (top-down, once) gives
+// Q_WT Q_TT⁻¹ Q_TW = L_WT L_WTᵀ, nonzero on W's first 5 unknowns only; Q = V Vᵀ (V upper triangular: the
+// Cholesky factor of Q in reversed order, once) gives the same from B on W's last 5. The window system
+// (H_WW − L_WT L_WTᵀ − V_WB V_WBᵀ) y_W = g_W is factorised per solve; then y_T = −L_TT⁻ᵀ L_WTᵀ y_W and
+// y_B = −V_BB⁻ᵀ V_WBᵀ y_W, one back substitution each. Exact (block elimination of the same system), at
+// O(|W|·9² + n·5) per solve, where the pushes of one trajectory and iteration span 5 % of it in the configs.
+class EliminationSolver final : public TrackSolver {
+ public:
+  EliminationSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
+      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options)) {
+    const BandCholesky& Q = objective_.Q;
+    const Index n = Q.size(), p = Q.bandwidth();
+    top_ = Q;
+    factorize_or_throw(top_, "deformation system");
+    bottom_.reset(n, p);  // Q in reversed order: R(i, j) = Q(n − 1 − i, n − 1 − j)
+    for (Index i = 0; i < n; ++i) {
+      for (Index j = std::max<Index>(0, i - p); j <= i; ++j) bottom_.at(i, j) = Q.at(n - 1 - j, n - 1 - i);
+    }
+    factorize_or_throw(bottom_, "deformation system");
   }
 
   Displacement solve(const std::vector<PointConstraint>& constraints) override {
-    const std::vector<Row> rows = constraint_rows(constraints, free_of_);
+    const std::vector<Row> rows = constraint_rows(constraints, objective_.free_of);
+    const BandCholesky& Q = objective_.Q;
+    const Index n = Q.size(), p = Q.bandwidth();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    if (rows.empty() || n == 0) {
+      check_met(rows, x);
+      return to_displacement(length_, objective_.unknown_of, x);
+    }
+    Index lo = n, hi = -1;
+    for (const Row& r : rows) {
+      for (int a = 0; a < 2; ++a) {
+        if (r.u[a] >= 0) {
+          lo = std::min(lo, r.u[a]);
+          hi = std::max(hi, r.u[a]);
+        }
+      }
+    }
+    const Index w0 = std::max<Index>(0, lo - p), w1 = std::min(n, hi + p + 1), w = w1 - w0;
+    // Roles in the window (local index u − w0): kept_[u] the local reduced index of a kept unknown, −1 when
+    // eliminated; an eliminated unknown is base_[u] + coef_[u] · x[via_[u]] (via_ −1: fixed at base_).
+    kept_.assign(static_cast<std::size_t>(w), 0);
+    via_.assign(static_cast<std::size_t>(w), -1);
+    coef_.assign(static_cast<std::size_t>(w), 1.0);
+    base_.setZero(w);
+    for (const Row& r : rows) {
+      const int e = r.u[1] >= 0 && std::abs(r.c[1]) > std::abs(r.c[0]) ? 1 : 0;
+      const Index ue = r.u[e] - w0, uo = r.u[1 - e] >= 0 ? r.u[1 - e] - w0 : -1;
+      for (Index u : {ue, uo}) {
+        if (u >= 0 && kept_[static_cast<std::size_t>(u)] != 0) {
+          throw std::logic_error("collide: two pushes of one iteration share a trajectory vertex");
+        }
+      }
+      kept_[static_cast<std::size_t>(ue)] = -1;
+      if (uo >= 0) kept_[static_cast<std::size_t>(uo)] = 1;  // used; kept
+      base_[ue] = r.target / r.c[e];
+      if (uo >= 0) {
+        via_[static_cast<std::size_t>(ue)] = uo;
+        coef_[static_cast<std::size_t>(ue)] = -r.c[1 - e] / r.c[e];
+      }
+    }
+    Index reduced = 0;
+    for (Index& k : kept_) k = k < 0 ? -1 : reduced++;
+    // Where each window unknown lands in the window's reduced system, with which factor (−1: a constant).
+    target_.resize(static_cast<std::size_t>(w));
+    factor_.resize(static_cast<std::size_t>(w));
+    for (Index u = 0; u < w; ++u) {
+      const auto s = static_cast<std::size_t>(u);
+      if (kept_[s] >= 0) {
+        target_[s] = kept_[s];
+        factor_[s] = 1.0;
+      } else if (via_[s] >= 0) {
+        target_[s] = kept_[static_cast<std::size_t>(via_[s])];
+        factor_[s] = coef_[s];
+      } else {
+        target_[s] = -1;
+        factor_[s] = 0.0;
+      }
+    }
+    auto q_at = [&](Index i, Index j) { return Q.at(w0 + i, w0 + j); };  // window-local, i ≥ j
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(reduced);
+    if (reduced > 0) {
+      Index q = 0;
+      for (Index i = 0; i < w; ++i) {
+        const Index ki = target_[static_cast<std::size_t>(i)];
+        if (ki < 0) continue;
+        for (Index j = std::max<Index>(0, i - p); j < i; ++j) {
+          const Index kj = target_[static_cast<std::size_t>(j)];
+          if (kj >= 0 && q_at(i, j) != 0.0) q = std::max(q, std::abs(ki - kj));
+        }
+      }
+      H_.reset(reduced, std::max(q, p));  // ≥ p: the corrections below fill W's first and last p × p blocks
+      for (Index i = 0; i < w; ++i) {
+        const Index ki = target_[static_cast<std::size_t>(i)];
+        if (ki < 0) continue;
+        const double zi = factor_[static_cast<std::size_t>(i)];
+        H_.at(ki, ki) += zi * zi * q_at(i, i);
+        for (Index j = std::max<Index>(0, i - p); j < i; ++j) {
+          const Index kj = target_[static_cast<std::size_t>(j)];
+          if (kj < 0) continue;
+          const double v = zi * q_at(i, j) * factor_[static_cast<std::size_t>(j)];
+          if (ki == kj) {
+            H_.at(ki, ki) += 2.0 * v;
+          } else {
+            H_.at(std::max(ki, kj), std::min(ki, kj)) += v;
+          }
+        }
+      }
+      // The unknowns before and after the window, eliminated through the stored factors. W's first p and last
+      // p unknowns are kept (they are outside lo .. hi), with local reduced indices 0 .. p − 1 and
+      // reduced − p .. reduced − 1.
+      if (w0 > 0) {
+        for (Index i = 0; i < p; ++i) {
+          for (Index j = 0; j <= i; ++j) {
+            double s = 0.0;
+            for (Index k = std::max<Index>(0, w0 + i - p); k < w0; ++k) s += top_.at(w0 + i, k) * top_.at(w0 + j, k);
+            H_.at(i, j) -= s;
+          }
+        }
+      }
+      if (w1 < n) {
+        // In reversed order B is the leading block [0, n − w1) and W's last p unknowns are n − w1 .. n − w1 + p − 1.
+        const Index b = n - w1;
+        for (Index i = 0; i < p; ++i) {
+          for (Index j = 0; j <= i; ++j) {
+            double s = 0.0;
+            for (Index k = std::max<Index>(0, b + i - p); k < b; ++k) s += bottom_.at(b + i, k) * bottom_.at(b + j, k);
+            H_.at(reduced - 1 - j, reduced - 1 - i) -= s;
+          }
+        }
+      }
+      // g = −Zᵀ Q x0 (x0 = base_ in the window, zero elsewhere: Q x0 is zero outside the window).
+      for (Index i = 0; i < w; ++i) {
+        double qx = 0.0;
+        for (Index j = std::max<Index>(0, i - p); j <= std::min(w - 1, i + p); ++j) qx += (j <= i ? q_at(i, j) : q_at(j, i)) * base_[j];
+        const Index k = target_[static_cast<std::size_t>(i)];
+        if (k >= 0) y[k] -= factor_[static_cast<std::size_t>(i)] * qx;
+      }
+      factorize_or_throw(H_, "deformation system with its pushes eliminated");
+      H_.solve(y);
+    }
+    for (Index u = 0; u < w; ++u) {
+      const Index k = target_[static_cast<std::size_t>(u)];
+      x[w0 + u] = base_[u] + (k >= 0 ? factor_[static_cast<std::size_t>(u)] * y[k] : 0.0);
+    }
+    // y_T = −L_TT⁻ᵀ L_WTᵀ y_W, y_B likewise through the reversed factor.
+    if (w0 > 0) {
+      for (Index i = 0; i < p; ++i) {
+        for (Index k = std::max<Index>(0, w0 + i - p); k < w0; ++k) x[k] -= top_.at(w0 + i, k) * x[w0 + i];
+      }
+      top_.backward(x, w0);
+    }
+    if (w1 < n) {
+      const Index b = n - w1;
+      reversed_.setZero(b);
+      for (Index i = 0; i < p; ++i) {
+        for (Index k = std::max<Index>(0, b + i - p); k < b; ++k) reversed_[k] -= bottom_.at(b + i, k) * x[w1 - 1 - i];
+      }
+      bottom_.backward(reversed_, b);
+      for (Index k = 0; k < b; ++k) x[n - 1 - k] = reversed_[k];
+    }
+    check_met(rows, x);
+    return to_displacement(length_, objective_.unknown_of, x);
+  }
+
+ private:
+  Index length_;
+  BandedObjective objective_;
+  BandCholesky top_, bottom_;  // Q = L Lᵀ, and the factor of Q in reversed order
+  // Scratch of one solve, kept to avoid reallocating.
+  std::vector<Index> kept_, via_, target_;
+  std::vector<double> coef_, factor_;
+  Eigen::VectorXd base_, reversed_;
+  BandCholesky H_;
+};
+
+// --- schur: LLᵀ of the band once, exact Schur complement over the constraint rows ---
+class SchurSolver final : public TrackSolver {
+ public:
+  SchurSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
+      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options)) {
+    factorize_or_throw(objective_.Q, "deformation system");
+  }
+
+  Displacement solve(const std::vector<PointConstraint>& constraints) override {
+    const std::vector<Row> rows = constraint_rows(constraints, objective_.free_of);
+    const BandCholesky& L = objective_.Q;
+    const Index n = L.size();
     const auto m = static_cast<Index>(rows.size());
     // G = Q⁻¹Cᵀ, a column per row; the forward substitution starts at the row's first unknown.
-    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n_, m);
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(n, m);
     for (Index j = 0; j < m; ++j) {
       const Row& r = rows[static_cast<std::size_t>(j)];
       auto g = G.col(j);
@@ -188,8 +399,8 @@ class BandedSolver final : public TrackSolver {
         g[r.u[1]] = r.c[1];
         start = std::min(start, r.u[1]);
       }
-      forward(g, start);
-      backward(g);
+      L.forward(g, start);
+      L.backward(g);
     }
     Eigen::MatrixXd S(m, m);
     for (Index i = 0; i < m; ++i) {
@@ -207,52 +418,12 @@ class BandedSolver final : public TrackSolver {
     for (Index i = 0; i < m; ++i) residual[i] = t[i] - row_value(rows[static_cast<std::size_t>(i)], x);
     x += G * schur.solve(residual);
     check_met(rows, x);
-    return to_displacement(length_, unknown_of_, x);
+    return to_displacement(length_, objective_.unknown_of, x);
   }
 
  private:
-  static constexpr Index p = 5;  // half-bandwidth
-  // L(i, j) for i − p ≤ j ≤ i (the lower band, overwritten by the factor).
-  double& L(Index i, Index j) { return band_[static_cast<std::size_t>(i * (p + 1) + (j - i + p))]; }
-  double L(Index i, Index j) const { return band_[static_cast<std::size_t>(i * (p + 1) + (j - i + p))]; }
-
-  void factorize() {
-    for (Index i = 0; i < n_; ++i) {
-      for (Index j = std::max<Index>(0, i - p); j <= i; ++j) {
-        double s = L(i, j);
-        for (Index k = std::max<Index>(0, i - p); k < j; ++k) s -= L(i, k) * L(j, k);
-        if (i == j) {
-          if (!(s > 0.0)) {
-            throw NumericalError("collide: a trajectory's deformation system (" + std::to_string(n_) +
-                                 " unknowns) is not positive definite at unknown " + std::to_string(i));
-          }
-          L(i, i) = std::sqrt(s);
-        } else {
-          L(i, j) = s / L(j, j);
-        }
-      }
-    }
-  }
-  // y ← L⁻¹ y, y zero before `start`.
-  void forward(Eigen::Ref<Eigen::VectorXd> y, Index start) const {
-    for (Index i = start; i < n_; ++i) {
-      double s = y[i];
-      for (Index k = std::max(start, i - p); k < i; ++k) s -= L(i, k) * y[k];
-      y[i] = s / L(i, i);
-    }
-  }
-  // y ← L⁻ᵀ y.
-  void backward(Eigen::Ref<Eigen::VectorXd> y) const {
-    for (Index i = n_ - 1; i >= 0; --i) {
-      double s = y[i];
-      for (Index k = i + 1; k <= std::min(n_ - 1, i + p); ++k) s -= L(k, i) * y[k];
-      y[i] = s / L(i, i);
-    }
-  }
-
-  Index length_, n_ = 0;
-  std::vector<Index> free_of_, unknown_of_;
-  std::vector<double> band_;
+  Index length_;
+  BandedObjective objective_;  // Q overwritten by its factor
 };
 
 // --- linalg: the solver layer's ConstrainedLeastSquares (eigen backend) ---
@@ -312,8 +483,15 @@ class LinalgSolver final : public TrackSolver {
 
 std::unique_ptr<TrackSolver> make_track_solver(const Eigen::Ref<const Displacement>& positions,
                                                const std::vector<char>& pinned, const Options& options) {
-  if (options.track_method == TrackMethod::linalg) return std::make_unique<LinalgSolver>(positions, pinned, options);
-  return std::make_unique<BandedSolver>(positions, pinned, options);
+  switch (options.track_method) {
+    case TrackMethod::linalg:
+      return std::make_unique<LinalgSolver>(positions, pinned, options);
+    case TrackMethod::schur:
+      return std::make_unique<SchurSolver>(positions, pinned, options);
+    case TrackMethod::eliminate:
+      break;
+  }
+  return std::make_unique<EliminationSolver>(positions, pinned, options);
 }
 
 }  // namespace throng::collide

@@ -106,7 +106,7 @@ enum class ObstaclePull { sideways, nearest };
 enum class PairPush { sideways, apart };
 
 /// How each trajectory's constrained system is solved (the same method, see "Solver" above; for benchmarks).
-enum class TrackMethod { banded, linalg };
+enum class TrackMethod { eliminate, schur, linalg };
 
 struct Options {
   double margin = 0.0;            ///< metres added to r_a + r_b (pairs) and to r (obstacles), ≥ 0
@@ -122,7 +122,7 @@ struct Options {
   double max_displacement = 10.0;     ///< metres any vertex may move from its input (a push beyond: abandoned), > 0
   std::size_t contact_patience = 1000;  ///< pushes of one contact without a new smallest deficit before it is abandoned
   std::size_t stall_iterations = 5000;  ///< iterations without fewer pushable contacts than ever before: stop
-  TrackMethod track_method = TrackMethod::banded;
+  TrackMethod track_method = TrackMethod::eliminate;
 };
 
 /// Speeds and accelerations of a crowd (m/s, m/s²): the largest over every agent's present frames (finite
