@@ -177,7 +177,7 @@ TEST_CASE("a batch naming a missing job or an empty folder fails before running 
   CHECK(run("--print-config run " + good.string() + " " + good.string(), &out) == 2);
 }
 
-TEST_CASE("a batch over 2 MPI ranks spreads the jobs round-robin, with either backend") {
+TEST_CASE("a batch over 2 MPI ranks spreads the jobs round-robin, with either backend", "[mpi]") {
   const std::string mpiexec = test::mpiexec();
   if (mpiexec.empty()) {
     WARN("mpiexec not found: MPI batch test skipped");
@@ -251,7 +251,7 @@ TEST_CASE("a batch keeps stdout for its summary, refuses two jobs writing one fi
   CHECK_FALSE(fs::exists(dir / "stuck.h5"));
 }
 
-TEST_CASE("a batch over 2 MPI ranks with a job failing on rank 1 reports it once, from rank 0") {
+TEST_CASE("a batch over 2 MPI ranks with a job failing on rank 1 reports it once, from rank 0", "[mpi]") {
   const std::string mpiexec = test::mpiexec();
   if (mpiexec.empty()) {
     WARN("mpiexec not found: MPI batch test skipped");
@@ -289,7 +289,7 @@ TEST_CASE("a batch over 2 MPI ranks with a job failing on rank 1 reports it once
   CHECK_FALSE(fs::exists(dir / "j1.h5"));
 }
 
-TEST_CASE("one pipeline under mpiexec -np 2 prints its report and writes its file once") {
+TEST_CASE("one pipeline under mpiexec -np 2 prints its report and writes its file once", "[mpi]") {
   const std::string mpiexec = test::mpiexec();
   if (mpiexec.empty()) {
     WARN("mpiexec not found: MPI pipeline test skipped");

@@ -259,7 +259,7 @@ TEST_CASE("an output folder that does not exist fails before any work, and a sin
   CHECK_FALSE(std::filesystem::exists(dir / "out.h5"));
 }
 
-TEST_CASE("stitch under mpiexec with the petsc backend matches eigen on 1 and 2 ranks, one file and one report") {
+TEST_CASE("stitch under mpiexec with the petsc backend matches eigen on 1 and 2 ranks, one file and one report", "[mpi]") {
   const std::string mpiexec = test::mpiexec();
   if (mpiexec.empty()) {
     WARN("mpiexec not found: MPI stitch test skipped");
