@@ -146,7 +146,7 @@ void refresh(ContactTracker::Interval& I, std::size_t i, const std::vector<std::
 // hold every pair that could touch.
 bool needs_rebuild(const ContactTracker::Interval& I, std::size_t i, const std::vector<std::uint32_t>& moved, const Setting& s) {
   for (std::uint32_t a : moved) {
-    if (!detail::has_segment(s.crowd, i, a) || I.in_grid[a] == 0) return true;
+    if (!detail::has_segment(s.crowd, i, a) || I.in_grid[a] == 0) return true;  // presence changed
     if (!I.registered[a].contains(detail::segment_box(s.crowd, i, a, half_width(s, a)))) return true;
   }
   return false;
@@ -181,37 +181,46 @@ ContactTracker& ContactTracker::operator=(ContactTracker&&) noexcept = default;
 
 void ContactTracker::update(const CrowdMotion& crowd, const std::vector<char>& candidates) {
   ++stats_.updates;
-  // Moved segments by interval (ascending agents): a segment moved when either end's bits changed.
+  // Which vertices changed (bit for bit), frame by frame in parallel (the positions are stored by frame).
+  changed_.resize(frames_ * agents_);
+  parallel_for(frames_, 8, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t f = begin; f < end; ++f) {
+      const double* p = crowd.positions.data() + crowd.index(f, 0);
+      std::uint64_t* stored = bits_.data() + 2 * f * agents_;
+      char* changed = changed_.data() + f * agents_;
+      for (std::size_t a = 0; a < agents_; ++a, p += 3, stored += 2) {
+        changed[a] = 0;
+        if (!candidates.empty() && candidates[a] == 0) continue;
+        const std::uint64_t x = bits_of(p[0]), y = bits_of(p[1]);
+        if (x != stored[0] || y != stored[1]) {
+          changed[a] = 1;
+          stored[0] = x;
+          stored[1] = y;
+        }
+      }
+    }
+  });
+  // Each interval on its own: its moved segments (an end changed) re-examined, or the interval rebuilt.
   moved_.resize(intervals_.size());
-  for (auto& m : moved_) m.clear();
-  std::vector<char> changed(frames_);
-  for (std::size_t a = 0; a < agents_; ++a) {
-    if (!candidates.empty() && candidates[a] == 0) continue;
-    bool any = false;
-    for (std::size_t f = 0; f < frames_; ++f) {
-      const double* p = crowd.positions.data() + crowd.index(f, a);
-      std::uint64_t* stored = bits_.data() + 2 * (f * agents_ + a);
-      const std::uint64_t x = bits_of(p[0]), y = bits_of(p[1]);
-      changed[f] = static_cast<char>(x != stored[0] || y != stored[1]);
-      any = any || changed[f] != 0;
-      stored[0] = x;
-      stored[1] = y;
-    }
-    if (!any) continue;
-    for (std::size_t i = 0; i + 1 < frames_; ++i) {
-      if (changed[i] != 0 || changed[i + 1] != 0) moved_[i].push_back(static_cast<std::uint32_t>(a));
-    }
-  }
   std::vector<char> rebuilt(intervals_.size(), 0);
   const Setting s{crowd, obstacles_, obstacle_bounds_, margin_, skin_};
   parallel_for(intervals_.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (moved_[i].empty()) continue;
-      if (needs_rebuild(intervals_[i], i, moved_[i], s)) {
+      std::vector<std::uint32_t>& moved = moved_[i];
+      moved.clear();
+      const char *c0 = changed_.data() + i * agents_, *c1 = c0 + agents_;
+      for (std::size_t a = 0; a < agents_; ++a) {
+        // A vertex next to an absent one changes no segment of this interval (absent before and after).
+        if ((c0[a] != 0 || c1[a] != 0) && (intervals_[i].in_grid[a] != 0 || detail::has_segment(crowd, i, a))) {
+          moved.push_back(static_cast<std::uint32_t>(a));
+        }
+      }
+      if (moved.empty()) continue;
+      if (needs_rebuild(intervals_[i], i, moved, s)) {
         build(intervals_[i], i, s);
         rebuilt[i] = 1;
       } else {
-        refresh(intervals_[i], i, moved_[i], s);
+        refresh(intervals_[i], i, moved, s);
       }
     }
   });

@@ -73,6 +73,7 @@ class ContactTracker {
   double margin_ = 0.0, skin_ = 0.0;
   std::size_t frames_ = 0, agents_ = 0;
   std::vector<std::uint64_t> bits_;  // x, y bit patterns per (frame, agent), as last seen
+  std::vector<char> changed_;        // update()'s changed vertices per (frame, agent) (kept to reuse)
   std::vector<Interval> intervals_;
   std::vector<std::vector<std::uint32_t>> moved_;  // update()'s moved agents by interval (kept to reuse)
   std::vector<std::vector<Eigen::AlignedBox2d>> obstacle_bounds_;  // [obstacle][interval]
