@@ -111,9 +111,10 @@ class Repair {
                            1.0 - static_cast<double>(contacts.size()) / initial});
       progress.update(std::min(fraction, 1.0), "collide");
     }
-    // The final state, from scratch.
+    // The final state: the tracker's contacts are those of the current positions (every deformation was followed
+    // by an update), exactly what a full search reports (contact_tracker.h); the gaps are searched afresh.
     start = Clock::now();
-    const Contacts final_contacts = find_contacts(crowd_, obstacles_, options_.margin);
+    const Contacts& final_contacts = tracker.contacts();
     report.pair_contacts = final_contacts.pair_count();
     report.obstacle_contacts = final_contacts.obstacle_count();
     report.converged = final_contacts.size() == 0;

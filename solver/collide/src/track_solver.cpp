@@ -166,16 +166,21 @@ BandedObjective banded_objective(const Eigen::Ref<const Displacement>& positions
   b.free_of = std::move(o.free_of);
   b.unknown_of = std::move(o.unknown_of);
   const auto n = static_cast<Index>(b.unknown_of.size());
-  Sparse selection(o.A.cols(), n);
-  std::vector<Triplet> pick;
-  for (Index f = 0; f < n; ++f) pick.emplace_back(b.unknown_of[static_cast<std::size_t>(f)], f, 1.0);
-  selection.setFromTriplets(pick.begin(), pick.end());
-  const Sparse AF = o.A * selection;
-  const Sparse Q = AF.transpose() * o.weights.asDiagonal() * AF;
+  // Q = Σ_rows w_r a_r a_rᵀ over the free unknowns, accumulated row by row into the band (each row touches at
+  // most three neighbouring vertices).
+  const Eigen::SparseMatrix<double, Eigen::RowMajor, Index> rows = o.A;
   b.Q.reset(n, p);
-  for (Index j = 0; j < Q.outerSize(); ++j) {
-    for (Sparse::InnerIterator it(Q, j); it; ++it) {
-      if (it.row() >= j && it.row() - j <= p) b.Q.at(it.row(), j) = it.value();
+  for (Index r = 0; r < rows.outerSize(); ++r) {
+    const double w = o.weights[r];
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor, Index>::InnerIterator i(rows, r); i; ++i) {
+      const Index fi = b.free_of[static_cast<std::size_t>(i.col())];
+      if (fi < 0) continue;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor, Index>::InnerIterator j(rows, r); j; ++j) {
+        const Index fj = b.free_of[static_cast<std::size_t>(j.col())];
+        if (fj < 0 || fj > fi) continue;
+        if (fi - fj > p) throw std::logic_error("collide: a trajectory's system is wider than its band");
+        b.Q.at(fi, fj) += w * i.value() * j.value();
+      }
     }
   }
   return b;

@@ -2,23 +2,28 @@
 //
 // A track is a run of consecutive present frames of one agent: vertices k = 0 .. length−1 at frames
 // first + k. Unknowns: the displacement (dx, dy) of every vertex, interleaved. Objective rows: the temporal
-// features (v_{k−1}, v_k, v_{k+1}) of the input (weight w(c), Eq. 6) as complex rows on the displacement, and
-// anchor rows with weight (mean temporal weight)/spread⁴ on d. Pinned vertices have d = 0 (eliminated). A point
+// features (v_{k−1}, v_k, v_{k+1}) of the input (weight w(c), Eq. 6) as complex rows on the displacement,
+// velocity rows d_{k+1} − d_k (weight velocity_weight · mean temporal weight) and anchor rows on d (that weight /
+// spread²; with velocity_weight 0, mean temporal weight / spread⁴). Pinned vertices have d = 0 (eliminated). A point
 // constraint asks Σ_j c_j d_{v_j} = target (2 rows, free vertices only).
 //
-// Solve: min |A d|²_W subject to C d = t, exactly, through the Schur complement on a factorisation made once:
-//   Q = AᵀWA on the free unknowns is factorised when the track is first pushed (Q = LLᵀ); each solve computes
-//   G = Q⁻¹Cᵀ (one forward and one back substitution per constraint row), S = C G (m × m, dense SPD because
-//   every vertex carries at most one constraint), λ = S⁻¹ t, d = G λ, then one step of iterative refinement
-//   (the residual t − C d through the same S); a residual above 1e-9 of the largest push is a NumericalError.
-// No penalty, so no stiffness to balance against the spread: every spread from 1 frame up works (the anchor is
-// floored at spread 1,000, see collide.h).
+// Solve: min |A d|²_W subject to C d = t, exactly, with Q = AᵀWA on the free unknowns assembled (and factorised)
+// once, when the track is first pushed. Every vertex carries at most one constraint (the repair takes disjoint
+// contacts); a residual above 1e-9 of the largest push is a NumericalError. No penalty, so no stiffness to
+// balance against the spread: every spread from 1 frame up works (the anchor is floored at spread 1,000, see
+// collide.h).
 //
-// Two implementations of that one method (TrackMethod): `banded` factorises Q in its natural order as a band
-// (a vertex couples with its two neighbours on each side: half-bandwidth 5 in interleaved unknowns, no fill) and
-// starts each forward substitution at its constraint's first unknown; `linalg` hands the same objective, pins
-// and constraint rows to throng/linalg's ConstrainedLeastSquares (CHOLMOD, Schur complement over the added
-// constraints). They agree to rounding (tests/collide); the measured choice is in collide.h.
+// Three implementations of that one method (TrackMethod); they agree to rounding (tests/collide
+// test_track_solver), the measured choice is in collide.h:
+//  * `eliminate`: each row c_e x_e + c_o x_o = t is solved for the unknown with the larger |c|, the rest is a
+//    band system (half-bandwidth ≤ 9) that differs from Q only in a window around the pushed unknowns; the
+//    unknowns before and after the window are eliminated through Q = L Lᵀ and the reversed factor of Q (both
+//    once), and only the window is factorised per solve (details at the class);
+//  * `schur`: Q = L Lᵀ as a band once (a vertex couples with its two neighbours on each side: half-bandwidth 5
+//    in interleaved unknowns, no fill); per solve G = Q⁻¹Cᵀ (forward substitutions starting at each row's first
+//    unknown), S = C G (m × m, dense SPD), λ = S⁻¹ t, d = G λ, one step of iterative refinement through S;
+//  * `linalg`: the same objective, pins and constraint rows through throng/linalg's ConstrainedLeastSquares
+//    (CHOLMOD, Schur complement over the added constraints).
 #pragma once
 
 #include <throng/collide/collide.h>
