@@ -119,3 +119,37 @@ TEST_CASE("bad PETSc options are configuration errors naming them") {
     }
   }
 }
+
+TEST_CASE("the eigen backend adopts an analysis only for the pattern it was made for") {
+  const SparseMatrix A1 = throng::test::random_objective(120, 51), A2 = throng::test::random_objective(120, 52);
+  const SparseMatrix Q1 = SparseMatrix(A1.transpose()) * A1, Q2 = SparseMatrix(A2.transpose()) * A2;
+  REQUIRE(Q1.rows() == Q2.rows());
+  auto first = make_spd_solver({});
+  first->analyze(Q1);
+  // Another pattern of the same size: refused, and the solver is left as it was (still needs analyze()).
+  auto second = make_spd_solver({});
+  CHECK_FALSE(second->adopt_analysis(*first, Q2));
+  second->analyze(Q2);
+  second->factorize(Q2);
+  // The same pattern with other values: adopted, factorised with its own values.
+  auto third = make_spd_solver({});
+  REQUIRE(third->adopt_analysis(*first, Q1));
+  third->factorize(2.0 * Q1);
+  const Eigen::MatrixXd B = throng::test::random_matrix(120, 1, 53);
+  Eigen::MatrixXd X(120, 1), Y(120, 1);
+  third->solve(B, X);
+  second->solve(B, Y);
+  // Backward stable Cholesky: residuals at ε · ‖Q‖ · ‖X‖ (cond ≈ 1e2, problems.h).
+  CHECK((2.0 * Q1 * X - B).norm() <= 1e-13 * Eigen::MatrixXd(2.0 * Q1).norm() * X.norm());
+  CHECK((Q2 * Y - B).norm() <= 1e-13 * Eigen::MatrixXd(Q2).norm() * Y.norm());
+  // A backend of another kind is never adopted from.
+  if (has_petsc()) {
+    SolverOptions petsc;
+    petsc.backend = "petsc";
+    petsc.petsc_prefix = "t_adopt_";
+    auto iterative = make_spd_solver(petsc);
+    iterative->analyze(Q1);
+    CHECK_FALSE(third->adopt_analysis(*iterative, Q1));
+    CHECK_FALSE(iterative->adopt_analysis(*first, Q1));
+  }
+}

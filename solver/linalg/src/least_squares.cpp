@@ -25,16 +25,85 @@ double seconds_since(Clock::time_point start) {
 // tolerance (1e-12) with PETSc.
 constexpr double redundant_pivot = 1e-9;
 
-// Q = Aᵀ diag(w) A, both triangles.
-SparseMatrix normal_matrix(const SparseMatrix& A, const Eigen::VectorXd& w) {
-  const SparseMatrix weighted = w.asDiagonal() * A;
-  SparseMatrix Q = SparseMatrix(A.transpose()) * weighted;
-  Q.makeCompressed();
-  return Q;
+// The blocks of Q = Aᵀ diag(w) A the solver needs, assembled straight from A without forming Q:
+//   FF = Q_FF (#free by #free, both triangles) and PF = Q_PF = Q_FPᵀ (#pinned by #free),
+// column c of each from Q[:, free_unknowns[c]] = Σ_r w_r A(r, j) A(r, :)ᵀ, for the free columns `columns`
+// (free positions, increasing; nullptr: all). The other columns stay empty: a distributed backend reads only the
+// columns of its own rows (SpdSolver::owned_columns), so each rank assembles and keeps only those. The pattern is
+// structural (zero weights keep their entries), so new weights never change it. Each entry is summed over the
+// rows r in increasing order as w_r (A(r, j) A(r, k)), the same sum for (j, k) and (k, j): FF is exactly
+// symmetric, and the same inputs give the same bits.
+struct NormalBlocks {
+  SparseMatrix FF, PF;
+};
+
+NormalBlocks normal_blocks(const SparseMatrix& A, const Eigen::VectorXd& w, const std::vector<Index>& free_unknowns,
+                           const std::vector<Index>& free_position, const std::vector<Index>& pin_slot, Index pinned,
+                           const std::vector<Index>* columns) {
+  const SparseMatrix At = A.transpose();  // the rows of A as columns (a temporary copy of A)
+  const Index n = A.cols();
+  const auto nf = static_cast<Index>(free_unknowns.size());
+  std::vector<double> sum(static_cast<std::size_t>(n), 0.0);
+  std::vector<char> seen(static_cast<std::size_t>(n), 0);
+  std::vector<int> touched;
+  std::vector<int> ff_outer(static_cast<std::size_t>(nf) + 1, 0), pf_outer(static_cast<std::size_t>(nf) + 1, 0);
+  std::vector<int> ff_inner, pf_inner;
+  std::vector<double> ff_values, pf_values;
+  std::vector<std::pair<int, double>> pinned_entries;
+  std::size_t next = 0;  // position in `columns`
+  for (Index c = 0; c < nf; ++c) {
+    const bool wanted = columns == nullptr || (next < columns->size() && (*columns)[next] == c);
+    if (wanted && columns != nullptr) ++next;
+    if (wanted) {
+      const Index j = free_unknowns[static_cast<std::size_t>(c)];
+      touched.clear();
+      for (SparseMatrix::InnerIterator row(A, j); row; ++row) {
+        const double weight = w[row.row()];
+        const double a_rj = row.value();
+        for (SparseMatrix::InnerIterator it(At, row.row()); it; ++it) {
+          const auto k = static_cast<std::size_t>(it.row());
+          if (!seen[k]) {
+            seen[k] = 1;
+            sum[k] = 0.0;
+            touched.push_back(static_cast<int>(k));
+          }
+          sum[k] += weight * (a_rj * it.value());
+        }
+      }
+      std::sort(touched.begin(), touched.end());
+      pinned_entries.clear();
+      for (int k : touched) {
+        const auto ku = static_cast<std::size_t>(k);
+        seen[ku] = 0;
+        if (free_position[ku] >= 0) {
+          ff_inner.push_back(static_cast<int>(free_position[ku]));
+          ff_values.push_back(sum[ku]);
+        } else {
+          pinned_entries.emplace_back(static_cast<int>(pin_slot[ku]), sum[ku]);
+        }
+      }
+      std::sort(pinned_entries.begin(), pinned_entries.end());  // pin slots follow the caller's order
+      for (const auto& [slot, value] : pinned_entries) {
+        pf_inner.push_back(slot);
+        pf_values.push_back(value);
+      }
+    }
+    ff_outer[static_cast<std::size_t>(c) + 1] = static_cast<int>(ff_inner.size());
+    pf_outer[static_cast<std::size_t>(c) + 1] = static_cast<int>(pf_inner.size());
+  }
+  auto make = [&](Index rows, std::vector<int>& outer, std::vector<int>& inner, std::vector<double>& values) {
+    if (inner.empty()) return SparseMatrix(rows, nf);
+    return SparseMatrix(Eigen::Map<const SparseMatrix>(rows, nf, static_cast<Index>(inner.size()), outer.data(),
+                                                       inner.data(), values.data()));
+  };
+  NormalBlocks blocks;
+  blocks.FF = make(nf, ff_outer, ff_inner, ff_values);
+  blocks.PF = make(pinned, pf_outer, pf_inner, pf_values);
+  return blocks;
 }
 
 // The rows `keep` (new index per old row, −1 dropped) of the columns `columns` of M, as a new matrix with
-// `rows` rows. Used to cut Q into Q_FF, Q_FP and Cᵀ into its free and pinned parts.
+// `rows` rows. Used to cut Cᵀ into its free and pinned parts.
 SparseMatrix select(const SparseMatrix& M, const std::vector<Index>& keep, Index rows, const std::vector<Index>& columns) {
   // Compressed arrays written directly: one counting pass, one filling pass. (Eigen's reserve() on a matrix
   // with no column writes out of bounds.)
@@ -89,14 +158,17 @@ struct ConstrainedLeastSquares::State {
   // Objective.
   SparseMatrix A;
   Eigen::VectorXd weights;
-  SparseMatrix Q;  // AᵀWA
 
   // Pins: the free unknowns in increasing order, and each unknown's free position or pin slot (−1 if none).
   std::vector<Index> pinned;
   std::vector<Index> free_unknowns;
   std::vector<Index> free_position;
   std::vector<Index> pin_slot;
-  SparseMatrix Q_FF, Q_FP;
+  // Blocks of Q = AᵀWA. Q_FF lives only from assembly to factorisation (the backend keeps what it needs: a
+  // factor, or its own rows); Q_PF = Q_FPᵀ is kept for the right-hand sides. With a distributed backend both hold
+  // only the columns of this rank's rows (`owned`, free positions; empty: all).
+  SparseMatrix Q_FF, Q_PF;
+  std::vector<Index> owned;
 
   // Constraints, rows scaled to unit length, stored transposed (one column per constraint).
   SparseMatrix CT;         // #unknowns by #constraints
@@ -116,9 +188,8 @@ struct ConstrainedLeastSquares::State {
   int block_size = 1;
   bool complex_pairs = false;
 
-  // What is stale. split_stale: Q has new values that Q_FF and Q_FP do not have yet.
-  bool q_stale = true;
-  bool split_stale = true;
+  // What is stale. blocks_stale: Q_FF and Q_PF lack the current weights (or were released).
+  bool blocks_stale = true;
   bool analysis_stale = true;
   bool factor_stale = true;
 
@@ -153,6 +224,11 @@ struct ConstrainedLeastSquares::State {
     invalidate_schur();
   }
   [[nodiscard]] bool has_basis() const { return pin_basis.cols() > 0; }
+  // Z is worth precomputing only when each of its columns is a back-substitution (a direct backend): with an
+  // iterative backend every column is a whole Krylov solve, and a drag is one warm-started solve with its own
+  // pin values (measured on the battlefield edit, 8 basis columns per step: 16 CG solves in precompute against
+  // 2 per drag).
+  [[nodiscard]] bool basis_solves() const { return has_basis() && backend->is_direct(); }
 
   // Z = Q_FF⁻¹ Q_FP B, one block of back-substitutions.
   void solve_basis() {
@@ -160,7 +236,7 @@ struct ConstrainedLeastSquares::State {
       throw std::invalid_argument("ConstrainedLeastSquares: the pin basis has " + std::to_string(pin_basis.rows()) +
                                   " rows for " + std::to_string(pinned.size()) + " pinned unknowns");
     }
-    const Eigen::MatrixXd rhs = Eigen::MatrixXd(SparseMatrix(Q_FP * pin_basis));
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd(SparseMatrix(SparseMatrix(Q_PF.transpose()) * pin_basis));
     Z = free_count() > 0 ? solve_free(rhs) : Eigen::MatrixXd(0, pin_basis.cols());
     report.basis_columns += static_cast<int>(pin_basis.cols());
     basis_stale = false;
@@ -196,9 +272,24 @@ struct ConstrainedLeastSquares::State {
     }
   }
 
-  void split_q() {
-    Q_FF = select(Q, free_position, free_count(), free_unknowns);
-    Q_FP = select(Q, free_position, free_count(), pinned);
+  // Q_FF and Q_PF with the current weights: every column, or this rank's when the backend said which.
+  void assemble_blocks(bool all_columns) {
+    NormalBlocks blocks = normal_blocks(A, weights, free_unknowns, free_position, pin_slot,
+                                        static_cast<Index>(pinned.size()), all_columns || owned.empty() ? nullptr : &owned);
+    Q_FF = std::move(blocks.FF);
+    Q_PF = std::move(blocks.PF);
+    blocks_stale = false;
+  }
+
+  // Keeps only the owned columns of Q_PF (after the backend's analysis named them).
+  void keep_owned_columns() {
+    if (owned.empty()) return;
+    SparseMatrix kept(Q_PF.rows(), Q_PF.cols());
+    std::vector<Eigen::Triplet<double>> entries;
+    for (Index c : owned)
+      for (SparseMatrix::InnerIterator it(Q_PF, c); it; ++it) entries.emplace_back(it.row(), c, it.value());
+    kept.setFromTriplets(entries.begin(), entries.end());
+    Q_PF = std::move(kept);
   }
 
   void split_constraints() {
@@ -349,7 +440,7 @@ void ConstrainedLeastSquares::set_weights(const Eigen::Ref<const Eigen::VectorXd
     throw std::invalid_argument("ConstrainedLeastSquares: weights must be finite and ≥ 0");
   }
   state_->weights = weights;
-  state_->q_stale = true;
+  state_->blocks_stale = true;
   state_->invalidate_factor();
 }
 
@@ -433,21 +524,11 @@ void ConstrainedLeastSquares::share_analysis(const ConstrainedLeastSquares* othe
 void ConstrainedLeastSquares::analyze() {
   State& s = *state_;
   if (s.n() == 0) throw std::invalid_argument("ConstrainedLeastSquares: set_objective() with at least one unknown first");
-  if (s.q_stale) {
-    const auto start = Clock::now();
-    const Index previous_nnz = s.Q.nonZeros();
-    const Index previous_n = s.Q.rows();
-    s.Q = normal_matrix(s.A, s.weights);
-    s.q_stale = false;
-    s.split_stale = true;
-    if (s.Q.nonZeros() != previous_nnz || s.Q.rows() != previous_n) s.analysis_stale = true;
-    s.report.analyze_seconds = seconds_since(start);
-  }
   if (s.analysis_stale) {
     const auto start = Clock::now();
     s.build_pin_maps();
-    s.split_q();
-    s.split_stale = false;
+    s.owned.clear();
+    s.assemble_blocks(true);  // the backend's analysis sees the whole pattern (a distributed one lays out the ranks)
     s.split_constraints();
     if (s.free_count() > 0) {
       s.pass_hints();
@@ -456,11 +537,13 @@ void ConstrainedLeastSquares::analyze() {
                            s.backend->adopt_analysis(*source->backend, s.Q_FF);
       if (!adopted) s.backend->analyze(s.Q_FF);
       s.report.adopted_analyses += adopted ? 1 : 0;
+      s.owned = s.backend->owned_columns();
+      s.keep_owned_columns();
     }
     s.analysis_stale = false;
     s.factor_stale = true;
     ++s.report.analyses;
-    s.report.analyze_seconds += seconds_since(start);
+    s.report.analyze_seconds = seconds_since(start);
   }
 }
 
@@ -469,9 +552,10 @@ void ConstrainedLeastSquares::precompute() {
   State& s = *state_;
   if (s.factor_stale) {
     const auto start = Clock::now();
-    if (s.split_stale) s.split_q();
-    s.split_stale = false;
+    if (s.blocks_stale) s.assemble_blocks(false);
     if (s.free_count() > 0) s.factorize();
+    s.Q_FF = SparseMatrix();  // the backend holds its own copy (factor or rows) from here on
+    s.blocks_stale = true;    // Q_PF is still current: only Q_FF was released
     s.factor_stale = false;
     s.invalidate_schur();
     ++s.report.factorizations;
@@ -483,7 +567,7 @@ void ConstrainedLeastSquares::precompute() {
     s.extend_schur();
     s.report.schur_seconds = seconds_since(start);
   }
-  if (s.has_basis() && s.basis_stale) {
+  if (s.basis_solves() && s.basis_stale) {
     const auto start = Clock::now();
     s.solve_basis();
     s.report.basis_seconds = seconds_since(start);
@@ -536,14 +620,16 @@ Eigen::MatrixXd ConstrainedLeastSquares::solve_any(const Eigen::Ref<const Eigen:
     s.last_g.resize(0, 0);
   }
   // r = (AᵀW b)_F − Q_FP x_P: the first back-substitution's right-hand side (and the uncached Schur path's).
+  // With a distributed backend Q_PF holds this rank's columns only, so r is right in this rank's rows, the only
+  // ones the backend reads.
   auto residual_rhs = [&] {
     Eigen::MatrixXd r = s.last_r;
-    if (!s.pinned.empty()) r.noalias() -= s.Q_FP * xp;
+    if (!s.pinned.empty()) r.noalias() -= s.Q_PF.transpose() * xp;
     return r;
   };
 
   Eigen::MatrixXd xf(nf, k);
-  if (nf > 0 && in_basis) {
+  if (nf > 0 && in_basis && s.basis_solves()) {
     // x_F = Q_FF⁻¹ r_b − Z u: a back-substitution only when b changed.
     if (s.last_g.rows() != nf || s.last_g.cols() != k) {
       s.last_g.resize(nf, k);
@@ -621,7 +707,7 @@ Eigen::Index ConstrainedLeastSquares::constraints() const noexcept { return stat
 const std::vector<Eigen::Index>& ConstrainedLeastSquares::pinned() const noexcept { return state_->pinned; }
 bool ConstrainedLeastSquares::is_ready() const noexcept {
   const State& s = *state_;
-  return !s.q_stale && !s.analysis_stale && !s.factor_stale && s.schur_rows == s.m() && !(s.has_basis() && s.basis_stale);
+  return !s.analysis_stale && !s.factor_stale && s.schur_rows == s.m() && !(s.basis_solves() && s.basis_stale);
 }
 const LeastSquaresReport& ConstrainedLeastSquares::report() const noexcept { return state_->report; }
 const SolverOptions& ConstrainedLeastSquares::options() const noexcept { return state_->options; }

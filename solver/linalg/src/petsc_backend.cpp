@@ -9,9 +9,10 @@
 // Data layout (petsc_layout.h): the unknowns are renumbered by part: METIS splits the matrix's node graph
 // into one part per rank (and each of those into -<prefix>parts_per_rank sub-parts, the subdomains of additive
 // Schwarz), parts are dealt to ranks, and each rank owns the contiguous rows of its parts. Each rank inserts
-// only its own rows (columns mapped to the part order) into an MPIAIJ matrix; the callers (least_squares.h)
-// still build the whole matrix on every rank, as the SpdSolver interface hands the whole matrix to every rank.
-// After each solve every rank receives the whole solution, back in the caller's order.
+// only its own rows (columns mapped to the part order) into an MPIAIJ matrix, and reads only its own rows of the
+// matrices and right-hand sides it is given (owned_columns()): least_squares.h assembles the whole matrix once,
+// for the layout, then only this rank's columns, and keeps none of it after the numeric phase. After each
+// solve every rank receives the whole solution, back in the caller's order.
 //
 // Defaults: conjugate gradients with PETSc's algebraic multigrid (GAMG), one part per rank, the convergence
 // test on the true (unpreconditioned) residual for CG (other Krylov methods keep their own norm: MINRES, for
@@ -89,6 +90,20 @@ class PetscSpdSolver final : public SpdSolver {
 
   [[nodiscard]] std::string name() const override { return "petsc"; }
 
+  // Direct only when the user made the KSP a single application of a factorising preconditioner
+  // (-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps): then extra columns are cheap.
+  [[nodiscard]] bool is_direct() const override { return preonly_; }
+
+  // The caller's indices of this rank's rows (its METIS parts), increasing; empty on one rank (all of them).
+  [[nodiscard]] std::vector<Eigen::Index> owned_columns() const override {
+    if (ranks_ <= 1) return {};
+    std::vector<Eigen::Index> owned;
+    owned.reserve(static_cast<std::size_t>(end_ - begin_));
+    for (PetscInt row = begin_; row < end_; ++row) owned.push_back(old_of(row));
+    std::sort(owned.begin(), owned.end());
+    return owned;
+  }
+
   void set_near_null_space(const Eigen::Ref<const Eigen::MatrixXd>& modes, int block_size) override {
     block_size_ = std::max(1, block_size);
     if (modes.cols() == 0) {
@@ -165,6 +180,11 @@ class PetscSpdSolver final : public SpdSolver {
     THRONG_PETSC_CHECK(KSPSetTolerances(ksp_, options_.relative_tolerance, 1e-300, PETSC_DEFAULT,
                                         static_cast<PetscInt>(options_.max_iterations)));
     set_from_options();
+    KSPType type = nullptr;
+    THRONG_PETSC_CHECK(KSPGetType(ksp_, &type));
+    PetscBool preonly = PETSC_FALSE;
+    THRONG_PETSC_CHECK(PetscStrcmp(type, KSPPREONLY, &preonly));
+    preonly_ = preonly == PETSC_TRUE;
     set_subdomains(pc);
     info_ = {};
   }
@@ -354,6 +374,7 @@ class PetscSpdSolver final : public SpdSolver {
   SolverOptions options_;
   Eigen::MatrixXd near_null_;
   int block_size_ = 1;
+  bool preonly_ = false;
   int rank_ = 0;
   int ranks_ = 1;
   petsc::Layout layout_;

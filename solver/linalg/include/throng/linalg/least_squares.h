@@ -84,10 +84,12 @@ class ConstrainedLeastSquares {
   /// The pinned unknowns (distinct, any order; values come with each solve). Invalidates everything.
   void set_pinned(std::vector<Eigen::Index> pinned);
   /// Pin values given as coordinates in a basis: x[pinned] = B u, B #pinned by #coordinates (rows in the order
-  /// of set_pinned), u passed to solve_in_basis(). precompute() then also solves Q_FF Z = Q_FP B (#coordinates
-  /// back-substitutions, one block), and every solve_in_basis() whose b is the previous one's costs no
-  /// back-substitution at all: x_F = Q_FF⁻¹ r_b − Z u (r_b = (AᵀW b)_F, cached). For rigid drags u is a handful
-  /// of numbers per drag (cos θ, sin θ, translation): the per-drag cost of the editor's step 1.
+  /// of set_pinned), u passed to solve_in_basis(). With a direct backend (SpdSolver::is_direct) precompute()
+  /// then also solves Q_FF Z = Q_FP B (#coordinates back-substitutions, one block), and every solve_in_basis()
+  /// whose b is the previous one's costs no back-substitution at all: x_F = Q_FF⁻¹ r_b − Z u (r_b = (AᵀW b)_F,
+  /// cached). For rigid drags u is a handful of numbers per drag (cos θ, sin θ, translation): the per-drag cost
+  /// of the editor's step 1. With an iterative backend each column of Z would be a whole Krylov solve, so Z is
+  /// not computed: solve_in_basis() is solve() with pin values B u, started from the previous solution.
   /// An empty B (0 columns) removes the basis. Invalidates Z only.
   void set_pin_basis(const SparseMatrix& basis);
 

@@ -5,8 +5,11 @@
 //   "eigen"  (default, always built) CHOLMOD supernodal Cholesky through Eigen's CholmodSupport, METIS or AMD
 //            ordering chosen by CHOLMOD, with Eigen's SimplicialLDLT as the fallback when CHOLMOD reports failure.
 //   "petsc"  (built when THRONG_WITH_PETSC) PETSc KSP, conjugate gradients with algebraic multigrid by default,
-//            distributed over the MPI ranks of PETSC_COMM_WORLD. Every rank calls every method with the same
-//            (replicated) arguments and receives the whole solution; each rank owns a block of rows.
+//            distributed over the MPI ranks of PETSC_COMM_WORLD. Every rank calls every method in the same order
+//            and receives the whole solution. Each rank owns the rows of its METIS parts of the matrix's node
+//            graph (petsc_layout.h) and reads only those: after analyze(), owned_columns() names them, and the
+//            caller may then hand factorize() a matrix holding only those columns and solve() right-hand sides
+//            right only in those rows (least_squares.h assembles just that on each rank).
 // No header of this layer includes PETSc or MPI.
 #pragma once
 
@@ -60,6 +63,12 @@ class SpdSolver {
   /// The backend's name ("eigen", "petsc").
   [[nodiscard]] virtual std::string name() const = 0;
 
+  /// True when solve() is a back-substitution with a factor, so that solving for many right-hand sides ahead of
+  /// need is cheap (least_squares.h's pin basis: one block of back-substitutions in precompute, none per drag).
+  /// False when every column is a Krylov solve of its own: callers then solve with the right-hand side they
+  /// actually have, started from a nearby solution (solve_from), instead of precomputing columns.
+  [[nodiscard]] virtual bool is_direct() const { return true; }
+
   /// Symbolic phase for the pattern of `matrix` (#n by #n, both triangles stored, symmetric).
   virtual void analyze(const SparseMatrix& matrix) = 0;
 
@@ -71,6 +80,12 @@ class SpdSolver {
     (void)matrix;
     return false;
   }
+
+  /// The columns (= rows, the matrix being symmetric) of the analysed matrix that this process reads in
+  /// factorize(), increasing, and so the rows of right-hand sides and starting values it reads in solve() and
+  /// solve_from(); the other columns may be left empty and the other rows hold anything. Empty when it reads
+  /// everything (every non-distributed backend, and a distributed one on one rank). Valid until the next analyze().
+  [[nodiscard]] virtual std::vector<Eigen::Index> owned_columns() const { return {}; }
 
   /// Numeric phase: factorises (direct) or builds the preconditioner (iterative) for `matrix`, which has the
   /// pattern given to analyze(). Throws SingularMatrixError when `matrix` is singular or not positive definite
