@@ -278,41 +278,94 @@ TEST_CASE("a local edit equals the global edit with every vertex outside the reg
 TEST_CASE("the step across the region's edge is measured against the input, and a wider halo softens it") {
   const CrowdMotion crowd = scene();
   const Request request = corner_drag({4.0, -3.0});  // a drag large against the parts: the edge takes it
-  // The input's largest per-frame step, straight from the clip.
+  // Each agent's fastest input step and the clip's, straight from the clip.
   LocalEditor whole(crowd, local_options(12, -1), request);
   (void)whole.deform(request);
   const Clip& clip = whole.graph().clip;
-  double input_max = 0;
+  auto gap = [&](std::size_t i) { return static_cast<double>(clip.frames[i + 1] - clip.frames[i]); };
+  std::vector<double> fastest(clip.agent_count(), 0.0);
   for (std::size_t i = 0; i + 1 < clip.frames.size(); ++i) {
     for (std::size_t j = 0; j < clip.agent_count(); ++j) {
-      input_max = std::max(input_max, (clip.positions.row(clip.vertex(i + 1, j)) - clip.positions.row(clip.vertex(i, j))).norm() /
-                                          static_cast<double>(clip.frames[i + 1] - clip.frames[i]));
+      fastest[j] = std::max(fastest[j], (clip.positions.row(clip.vertex(i + 1, j)) - clip.positions.row(clip.vertex(i, j))).norm() / gap(i));
     }
   }
+  const double input_max = *std::max_element(fastest.begin(), fastest.end());
   // A region covering the graph has no edge.
   const BoundaryStep none = whole.boundary_step();
-  CHECK(none.edited_m == 0);
+  CHECK(none.added_m == 0);
   CHECK(none.agent == -1);
+  CHECK_FALSE(none.is_jump());
   CHECK(none.input_max_m == input_max);
   double last = 1e9;
   for (int halo : {0, 2}) {
     LocalEditor local(crowd, local_options(12, halo), request);
     const Positions got = local.deform(request);
     const BoundaryStep b = local.boundary_step();
-    INFO("halo " << halo << ": " << b.edited_m << " m/frame at agent " << b.agent << ", frame " << b.frame << " (input "
-                 << b.input_m << ", input max " << b.input_max_m << ")");
+    INFO("halo " << halo << ": " << b.added_m << " m/frame added at agent " << b.agent << ", frame " << b.frame << " (agent's fastest "
+                 << b.agent_input_max_m << ", clip's " << b.input_max_m << ")");
     CHECK(b.input_max_m == input_max);
     REQUIRE(b.agent >= 0);
-    CHECK(b.input_m <= b.input_max_m);
-    CHECK(b.edited_m > b.input_m);  // the edge stretched
-    // It is the step of that agent between two consecutive samples in the result.
+    // The reported pair is the edge pair with the largest added step against its agent's reference, by brute force.
+    std::vector<char> inside(static_cast<std::size_t>(got.rows()), 0);
+    for (int v : local.region()) inside[static_cast<std::size_t>(v)] = 1;
+    double worst = -1, worst_added = 0;
+    std::int64_t worst_agent = -1;
+    std::size_t worst_frame = 0;
+    for (std::size_t i = 0; i + 1 < clip.frames.size(); ++i) {
+      for (std::size_t j = 0; j < clip.agent_count(); ++j) {
+        const Eigen::Index v0 = clip.vertex(i, j), v1 = clip.vertex(i + 1, j);
+        if (inside[static_cast<std::size_t>(v0)] == inside[static_cast<std::size_t>(v1)]) continue;
+        const double added = ((got.row(v1) - got.row(v0)) - (clip.positions.row(v1) - clip.positions.row(v0))).norm() / gap(i);
+        const double ratio = added / std::max(fastest[j], BoundaryStep::reference_floor * input_max);
+        if (ratio > worst) worst = ratio, worst_added = added, worst_agent = clip.ids[j], worst_frame = clip.frames[i];
+      }
+    }
+    CHECK(b.agent == worst_agent);
+    CHECK(b.frame == worst_frame);
+    CHECK(b.added_m == worst_added);
     const auto j = static_cast<std::size_t>(std::find(clip.ids.begin(), clip.ids.end(), b.agent) - clip.ids.begin());
     const auto i = static_cast<std::size_t>(std::find(clip.frames.begin(), clip.frames.end(), b.frame) - clip.frames.begin());
     REQUIRE(i + 1 < clip.frames.size());
-    const double step = (got.row(clip.vertex(i + 1, j)) - got.row(clip.vertex(i, j))).norm() /
-                        static_cast<double>(clip.frames[i + 1] - clip.frames[i]);
-    CHECK(step == b.edited_m);
-    CHECK(b.edited_m < last);
-    last = b.edited_m;
+    CHECK(b.agent_input_max_m == fastest[j]);
+    CHECK(b.edited_m == (got.row(clip.vertex(i + 1, j)) - got.row(clip.vertex(i, j))).norm() / gap(i));
+    CHECK(b.input_m == (clip.positions.row(clip.vertex(i + 1, j)) - clip.positions.row(clip.vertex(i, j))).norm() / gap(i));
+    CHECK(b.is_jump() == (b.added_m > BoundaryStep::jump_factor * b.reference_m()));
+    CHECK(b.added_m < last);
+    last = b.added_m;
   }
+  // A 5 m drag stopped by a halo of 0 is a jump at the edge; a 2 cm nudge is not (it adds at most 2 cm over
+  // the two frames of a sample interval, a tenth of these agents' ~0.12 m per frame).
+  LocalEditor big(crowd, local_options(12, 0), request);
+  (void)big.deform(request);
+  CHECK(big.boundary_step().is_jump());
+  LocalEditor small(crowd, local_options(12, 0), corner_drag({0.02, 0.0}));
+  (void)small.deform(corner_drag({0.02, 0.0}));
+  const BoundaryStep nudge = small.boundary_step();
+  REQUIRE(nudge.agent >= 0);
+  CHECK(nudge.added_m > 0);
+  CHECK(nudge.added_m < 0.02);
+  CHECK_FALSE(nudge.is_jump());
+}
+
+TEST_CASE("parts by size: vertices / vertices_per_part parts, and a size out of range is a ConfigError") {
+  const CrowdMotion crowd = scene();
+  const Request request = corner_drag({1.5, -0.8});
+  Options o = local_options(LocalOptions::by_size, 0);
+  o.local.vertices_per_part = 300;  // 1,488 vertices: 5 parts
+  LocalEditor local(crowd, o, request);
+  CHECK(local.partition().part_count() == 5);
+  CHECK(local.report().parts == 5);
+  // The same parts as asking for 5 by count: the same edit, bit for bit.
+  LocalEditor counted(crowd, local_options(5, 0), request);
+  CHECK(local.deform(request) == counted.deform(request));
+  // Larger than the graph: one part, the global edit.
+  o.local.vertices_per_part = 1000000;
+  LocalEditor one(crowd, o, request);
+  CHECK(one.partition().part_count() == 1);
+  Editor editor(crowd, local_options(0, 0), request);
+  CHECK((one.deform(request) - editor.deform(request)).cwiseAbs().maxCoeff() < rounding);
+  o.local.vertices_per_part = 0;
+  CHECK_THROWS_WITH(LocalEditor(crowd, o, request), Contains("local.vertices_per_part 0"));
+  o.local.vertices_per_part = -3;
+  CHECK_THROWS_AS(LocalEditor(crowd, o, request), ConfigError);
 }

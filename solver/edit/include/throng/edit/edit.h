@@ -50,14 +50,19 @@
 
 namespace throng::edit {
 
-/// Local edits (throng/edit/local_edit.h): the space-time graph is split into `parts` METIS parts, and an edit
-/// solves only the parts holding a moved handle or a general constraint plus the parts within `halo` hops of
-/// them, with the rest pinned to its current positions. parts = 0 solves the whole graph (the Editor).
+/// Local edits (throng/edit/local_edit.h): the space-time graph is split into METIS parts, and an edit solves
+/// only the parts holding a moved handle or a general constraint plus the parts within `halo` hops of them, with
+/// the rest pinned to its current positions. parts = 0 solves the whole graph (the Editor).
 struct LocalOptions {
-  int parts = 0;                 ///< METIS parts of the space-time graph, ≥ 0 (0: off, global solves)
-  int halo = 1;                  ///< part hops around the reached parts, ≥ 0; −1: every connected part
-  std::uint64_t seed = 1;        ///< METIS's seed (same seed, same parts)
-  int max_cached_regions = 8;    ///< factorised regions kept for reuse across drags (least recently used go), ≥ 1
+  /// `parts` value for parts of about vertices_per_part vertices each: #vertices / vertices_per_part (rounded,
+  /// at least 1), so a region's size, and a drag's cost, follow the part size and not the crowd's (job: auto).
+  static constexpr int by_size = std::numeric_limits<int>::max();
+
+  int parts = 0;                  ///< METIS parts, ≥ 0 (0: off, global solves; by_size: from vertices_per_part)
+  int vertices_per_part = 5000;   ///< part size when parts = by_size, ≥ 1 (ignored for a given part count)
+  int halo = 1;                   ///< part hops around the reached parts, ≥ 0; −1: every connected part
+  std::uint64_t seed = 1;         ///< METIS's seed (same seed, same parts)
+  int max_cached_regions = 8;     ///< factorised regions kept for reuse across drags (least recently used go), ≥ 1
 };
 
 /// Everything that shapes the deformation. The paper gives no values for α, β, α′, β′; with the unit-free

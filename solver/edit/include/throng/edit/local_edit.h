@@ -36,33 +36,40 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 namespace throng::edit {
 
-/// Where a local edit meets the motion it left alone: the largest per-frame step of an agent between two
-/// consecutive samples of which one was solved and the other held (the region's edge in time), against the
-/// input. A region's edge pins its outside neighbours at their current positions, so a drag that is large
-/// compared with the halo shows up here as a jump. Measured on the battlefield edit (configs/edit-battlefield.yaml
-/// on the sketch-paper crowd: 50 agents, 2,618 frames, 10 parts): the input's largest step is 0.10 m per frame,
-/// the global edit's 0.19 m, a local edit with halo 0 (9 of the 10 parts) 0.49 m at its edge; halo 1 reaches
-/// every part. An audit on a 2,760-frame input saw 1.42 m (halo 0), 2.54 m (halo 1) and 0.30 m (halo 2)
-/// (docs/commands/scale.md, "Choosing parts").
+/// Where a local edit meets the motion it left alone: the region's edge in time, i.e. pairs of consecutive
+/// samples of one agent of which one was solved and the other held. The vertex outside is pinned at its current
+/// position, so whatever the edit moved the inside one by is added to that one step: the agent's velocity
+/// changes within one sample interval. added_m measures it: |Δp_edited − Δp_input| per frame across the edge.
+/// A jump is an added step larger than the agent could have made itself (jump_factor × its fastest input step,
+/// floored at reference_floor × the clip's fastest, so that a standing agent nudged by millimetres is not one).
+/// The pair reported is the edge pair with the largest added step against that reference.
 struct BoundaryStep {
-  /// A step faster than this many times the input's largest step is a jump a viewer sees (the global edit of
-  /// the battlefield doubles the input's largest step; a local edit within this factor stays smooth).
-  static constexpr double jump_factor = 4.0;
+  /// An added step above this many times the agent's fastest input step is a jump a viewer sees: the agent's
+  /// velocity changes by more than its own top speed within one frame (see docs/commands/scale.md, "Jumps at
+  /// the region's edge", for the measurements behind it).
+  static constexpr double jump_factor = 1.0;
+  /// The reference is at least this fraction of the clip's fastest step (standing agents).
+  static constexpr double reference_floor = 0.1;
 
-  double edited_m = 0;       ///< metres per frame across the edge in the last result (0: no agent crosses it)
-  double input_m = 0;        ///< the input's metres per frame between the same two samples
-  double input_max_m = 0;    ///< the input's largest metres per frame between consecutive samples, whole clip
-  std::int64_t agent = -1;   ///< the agent id where edited_m is reached (−1: none)
-  std::size_t frame = 0;     ///< the earlier input frame of that pair of samples
+  double added_m = 0;            ///< |Δp_edited − Δp_input| / frames across the edge, metres per frame (0: no edge)
+  double edited_m = 0;           ///< the step there in the last result, metres per frame
+  double input_m = 0;            ///< the input's step there, metres per frame
+  double agent_input_max_m = 0;  ///< that agent's fastest input step over the clip, metres per frame
+  double input_max_m = 0;        ///< the input's fastest step between consecutive samples, any agent, whole clip
+  std::int64_t agent = -1;       ///< the agent id of that pair (−1: no agent crosses the edge)
+  std::size_t frame = 0;         ///< the earlier input frame of that pair of samples
 
-  /// edited_m > jump_factor · input_max_m.
-  [[nodiscard]] bool is_jump() const noexcept { return edited_m > jump_factor * input_max_m; }
+  /// The step an added step is judged against: max(agent_input_max_m, reference_floor · input_max_m).
+  [[nodiscard]] double reference_m() const noexcept { return std::max(agent_input_max_m, reference_floor * input_max_m); }
+  /// added_m > jump_factor · reference_m().
+  [[nodiscard]] bool is_jump() const noexcept { return added_m > jump_factor * reference_m(); }
 };
 
 /// The stateful local editor (same request language and options as Editor; options.local.parts ≥ 1).
