@@ -95,3 +95,27 @@ TEST_CASE("malformed entries are configuration errors naming the line") {
   CHECK_THROWS_WITH(parse("weights: {beta: -1}\n"), Contains("out of range"));
   CHECK_THROWS_AS(parse("drags:\n  - {offset: [1]}\n"), ConfigError);
 }
+
+TEST_CASE("the local block: parts as a count or auto, vertices_per_part, and bad values naming the key") {
+  const EditJob by_size = parse("local: {parts: auto, vertices_per_part: 2000, halo: 2}\n");
+  CHECK(by_size.options.local.parts == edit::LocalOptions::by_size);
+  CHECK(by_size.options.local.vertices_per_part == 2000);
+  CHECK(by_size.options.local.halo == 2);
+  const std::string text = to_yaml_text(effective_edit_job(by_size));
+  CHECK_THAT(text, Contains("parts: auto") && Contains("vertices_per_part: 2000") && Contains("halo: 2"));
+  CHECK(parse(text).options.local.parts == edit::LocalOptions::by_size);  // reads back
+  const EditJob counted = parse("local: {parts: 12}\n");
+  CHECK(counted.options.local.parts == 12);
+  CHECK(counted.options.local.vertices_per_part == edit::LocalOptions{}.vertices_per_part);
+  CHECK_THAT(to_yaml_text(effective_edit_job(counted)), Contains("parts: 12"));
+  CHECK(parse("{}").options.local.parts == 0);  // global solves by default
+  CHECK_THAT(to_yaml_text(effective_edit_job(parse("{}"))), Contains("parts: 0") && Contains("vertices_per_part: "));
+
+  CHECK_THROWS_WITH(parse("local:\n  vertices_per_part: 0\n"), Contains("edit.yaml:2") && Contains("local.vertices_per_part") && Contains("out of range"));
+  CHECK_THROWS_WITH(parse("local: {vertices_per_part: 2.5}\n"), Contains("local.vertices_per_part"));
+  CHECK_THROWS_WITH(parse("local: {parts: -1}\n"), Contains("local.parts") && Contains("out of range"));
+  CHECK_THROWS_WITH(parse("local: {parts: 2000000000}\n"), Contains("local.parts") && Contains("out of range"));
+  CHECK_THROWS_WITH(parse("local: {parts: many}\n"), Contains("local.parts") && Contains("'many'"));
+  CHECK_THROWS_WITH(parse("local: {parts: [1, 2]}\n"), Contains("local.parts") && Contains("a part count or auto"));
+  CHECK_THROWS_AS(parse("local: {parts: auto, vertices_per_part: -5}\n"), ConfigError);
+}

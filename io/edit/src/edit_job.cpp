@@ -38,8 +38,8 @@ void bind(OptionBinder& b, Options& o) {
     f.field("degenerate_ratio", o.features.degenerate_ratio, Range{0.0, 1.0, false, true});
   });
   b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
-  b.section("local", [&](OptionBinder& l) {
-    l.field("parts", o.local.parts, Range::closed(0, 1e9));
+  b.section("local", [&](OptionBinder& l) {  // parts: read and written by hand (a count or `auto`)
+    l.field("vertices_per_part", o.local.vertices_per_part, Range::closed(1, 1e9));
     l.field("halo", o.local.halo, Range::closed(-1, 1e9));
     l.field("seed", o.local.seed, Range::closed(0, 2147483646));
     l.field("max_cached_regions", o.local.max_cached_regions, Range::closed(1, 1e6));
@@ -147,6 +147,27 @@ void read_clip(const ConfigNode& job, edit::Options& o) {
   }
 }
 
+// local.parts: a part count (0 = global solves) or `auto` (LocalOptions::by_size: from vertices_per_part).
+void read_local_parts(const ConfigNode& job, edit::Options& o) {
+  const auto local = job.find("local");
+  if (!local) return;
+  const auto parts = local->find("parts");
+  if (!parts) return;
+  if (parts->is_scalar() && parts->as_string() == "auto") {
+    o.local.parts = edit::LocalOptions::by_size;
+    return;
+  }
+  if (!parts->is_scalar()) parts->fail("expected a part count or auto");
+  std::int64_t v = 0;
+  try {
+    v = parts->as_int();
+  } catch (const ConfigError&) {
+    parts->fail("expected a part count (0 = global solves) or auto, found '" + parts->as_string() + "'");
+  }
+  if (v < 0 || v > 1000000000) parts->fail("value " + std::to_string(v) + " is out of range, expected a part count in [0, 1e9] or auto");
+  o.local.parts = static_cast<int>(v);
+}
+
 void read_edge_edits(const ConfigNode& job, edit::Options& o) {
   const auto formation = job.find("formation");
   if (!formation) return;
@@ -230,6 +251,7 @@ EditJob read_edit_job(const ConfigNode& job) {
   OptionReader reader(job);
   bind(reader, parsed.options);
   read_clip(job, parsed.options);
+  read_local_parts(job, parsed.options);
   read_edge_edits(job, parsed.options);
   read_handles(job, parsed.request);
   read_constraints(job, parsed.request);
@@ -250,6 +272,11 @@ YAML::Node effective_edit_job(const EditJob& job) {
   bind(writer, options);
   out["clip_only"] = job.clip_only;
   const auto& o = job.options;
+  if (o.local.parts == edit::LocalOptions::by_size) {
+    out["local"]["parts"] = "auto";
+  } else {
+    out["local"]["parts"] = o.local.parts;
+  }
   out["clip"]["first_frame"] = static_cast<std::uint64_t>(o.clip.first_frame);
   if (o.clip.last_frame == open_end) {
     out["clip"]["last_frame"] = "end";
