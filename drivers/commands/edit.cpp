@@ -3,8 +3,9 @@
 // The job format is in io/edit/include/throng/io/edit_job.h; docs/commands/edit.md is the README section.
 // Output: the whole input crowd with the edited clip put back (solver/edit output.h), or only the clip with
 // --clip-only (job key clip_only).
-// With local.parts > 0 (or --local-parts) the edit is local (solver/edit local_edit.h): only the parts it reaches
-// are solved; docs/commands/scale.md describes it.
+// With local.parts > 0 or auto (or --local-parts) the edit is local (solver/edit local_edit.h): only the parts it
+// reaches are solved; the report gives the step across the region's edge in time and a warning says when it
+// is a jump (edit::BoundaryStep); docs/commands/scale.md describes it.
 //
 // Under mpiexec every rank reads the input and builds the problem; the petsc backend shares the solves between
 // the ranks; rank 0 writes the output and prints the report.
@@ -36,6 +37,7 @@ struct Edited {
 Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) {
   Progress& progress = context.progress();
   auto result = std::make_shared<edit::Result>();
+  std::optional<edit::BoundaryStep> edge;  // local edits: the region's edge in time
   // Fills the result from either editor (they share the request language and the report).
   auto finish = [&](const auto& editor, const Eigen::Matrix<double, Eigen::Dynamic, 2>& samples) {
     progress.update(0.95, "edit: resample");
@@ -50,6 +52,7 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
     edit::LocalEditor editor(input.motion, job.options, job.request);
     progress.update(0.3, "edit: local solve");
     finish(editor, editor.deform(job.request));
+    edge = editor.boundary_step();
   } else {
     progress.update(0.0, "edit: graph");
     edit::Editor editor(input.motion, job.options, job.request);
@@ -69,6 +72,14 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
                  (job.clip_only ? " and are not in the clip-only output" : "; the output keeps them as they are"));
   }
   if (!r.fallback.empty()) context.warn("edit: " + r.fallback);
+  if (edge && edge->is_jump()) {
+    std::ostringstream text;
+    text.precision(3);
+    text << "edit: the local region's edge jumps: agent " << edge->agent << " after frame " << edge->frame << " gets "
+         << edge->added_m << " m per frame added to one step (its fastest step in the input is " << edge->agent_input_max_m
+         << " m); widen local.halo (now " << job.options.local.halo << ") or use larger parts (local.vertices_per_part)";
+    context.warn(text.str());
+  }
   // The request measured on the output frames (the solver's own check sees the samples only).
   result->report.max_output_residual = edit::max_request_residual(input.motion, result->crowd, result->first_frame, job.request);
 
@@ -128,6 +139,11 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
     e.report["region_vertices"] = r.region_vertices;
     e.report["region_boundary"] = r.region_boundary;
     e.report["partition_s"] = r.partition_seconds;
+    // The region's edge in time (edit::BoundaryStep): what the edit added to a step there, metres per frame,
+    // the agent's own fastest step it is judged against, and whether that is a jump.
+    e.report["region_edge_step_m"] = edge->added_m;
+    e.report["region_edge_reference_m"] = edge->reference_m();
+    e.report["region_edge_jump"] = edge->is_jump();
   }
   return e;
 }
@@ -148,9 +164,18 @@ class EditCommand final : public Command {
     app.add_option("--backend", backend_, "Solver backend, overriding the job's solver.backend")
         ->check(CLI::IsMember({"eigen", "petsc"}));
     app.add_option("--local-parts", local_parts_,
-                   "Local edit: split the graph into this many METIS parts and solve only those the edit reaches "
-                   "(overrides the job's local.parts; 0 = global)")
-        ->check(CLI::NonNegativeNumber);
+                   "Local edit: split the graph into this many METIS parts (auto: parts of local.vertices_per_part "
+                   "vertices) and solve only those the edit reaches (overrides the job's local.parts; 0 = global)")
+        ->check(CLI::Validator(
+            [](const std::string& text) -> std::string {
+              if (text == "auto") return {};
+              if (!text.empty() && text.size() <= 10 && text.find_first_not_of("0123456789") == std::string::npos &&
+                  std::stoll(text) <= 1000000000) {
+                return {};
+              }
+              return "expected a part count (0 to 1e9, 0 = global) or auto, found '" + text + "'";
+            },
+            "N|auto"));
     app.add_option("--halo", halo_, "Local edit: parts within this many hops of the reached ones are solved too "
                                     "(overrides local.halo; -1 = every connected part)")
         ->check(CLI::Range(-1, 1000000));
@@ -160,7 +185,7 @@ class EditCommand final : public Command {
     const ConfigNode job = context.load_job(job_path_);
     EditJob parsed = read_edit_job(job);
     if (!backend_.empty()) parsed.options.solver.backend = backend_;
-    if (local_parts_) parsed.options.local.parts = *local_parts_;
+    if (local_parts_) parsed.options.local.parts = *local_parts_ == "auto" ? edit::LocalOptions::by_size : std::stoi(*local_parts_);
     if (halo_) parsed.options.local.halo = *halo_;
     if (clip_only_) parsed.clip_only = true;
     const YAML::Node effective = effective_edit_job(parsed);
@@ -201,7 +226,7 @@ class EditCommand final : public Command {
   std::filesystem::path job_path_;
   std::filesystem::path output_;
   std::string backend_;
-  std::optional<int> local_parts_;
+  std::optional<std::string> local_parts_;
   std::optional<int> halo_;
   bool clip_only_ = false;
 };

@@ -248,3 +248,43 @@ TEST_CASE("the battlefield example configs run: the edit job and the pipeline") 
   REQUIRE(test::run_command("cd " + dir.string() + " && " + throng_cmd("-q run configs/run-battlefield.yaml"), &out) == 0);
   CHECK(std::filesystem::exists(dir / "battlefield.png"));
 }
+
+TEST_CASE("a local edit reports the step across its region's edge and warns when it jumps") {
+  const auto dir = test::scratch_dir("cli_edit_local_edge");
+  const auto input = write_input(dir);
+  // Everyone held at both ends; agents 100 and 101 dragged 3 m at frame 20 (about 15 of their steps).
+  const auto job = write_job(dir, "job.yaml",
+                             "drags:\n  - {frames: [0, 0]}\n  - {frames: [end, end]}\n"
+                             "  - {agents: [100, 101], frames: [20, 20], offset: [3, 0]}\n");
+  // Runs with the report (stdout) and the messages (stderr) apart.
+  auto edit = [&](const std::string& flags, nlohmann::json& report, std::string& messages) {
+    const auto err = dir / "stderr.txt";
+    std::string out;
+    const int code = test::run_command("(" + throng_cmd("--json edit " + input.string() + " --job " + job.string() + " " + flags +
+                                                         " -o " + (dir / "out.h5").string()) +
+                                           " 2>" + err.string() + ")",
+                                       &out);
+    std::ifstream in(err);
+    messages.assign(std::istreambuf_iterator<char>(in), {});
+    INFO(out << messages);
+    REQUIRE(code == 0);
+    report = nlohmann::json::parse(out);
+  };
+  nlohmann::json report;
+  std::string messages;
+  // Halo 0: the drag's parts end a few frames from frame 20, so the held agents take the 3 m in a few steps.
+  edit("--local-parts 8 --halo 0", report, messages);
+  CHECK(report["region_edge_jump"] == true);
+  CHECK(report["region_edge_step_m"].get<double>() > report["region_edge_reference_m"].get<double>());
+  CHECK(report["region_edge_reference_m"].get<double>() > 0);
+  CHECK_THAT(messages, Contains("the local region's edge jumps") && Contains("widen local.halo"));
+  // A region covering the graph has no edge: nothing added, no warning.
+  edit("--local-parts 8 --halo -1", report, messages);
+  CHECK(report["region_edge_step_m"] == 0.0);
+  CHECK(report["region_edge_jump"] == false);
+  CHECK_THAT(messages, !Contains("edge jumps"));
+  // A global edit has no region.
+  edit("", report, messages);
+  CHECK_FALSE(report.contains("region_edge_step_m"));
+  CHECK_THAT(messages, !Contains("edge jumps"));
+}
