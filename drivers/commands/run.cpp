@@ -25,8 +25,11 @@
 // `throng edit missing.h5`); every error of a step, reading its inputs and job file included, is labelled
 // "step i/n <command>".
 //
-// One pipeline under mpiexec: every rank runs every step (the petsc backend shares the solves between the
-// ranks), rank 0 alone writes the crowd files and prints (the other ranks' stdout goes to /dev/null).
+// One pipeline under mpiexec: every rank runs every step that makes a crowd (the petsc backend shares the
+// solves between the ranks), rank 0 alone writes the crowd files and prints (the other ranks' stdout goes to
+// /dev/null). Steps that make a picture or a table (plot, export, info) write their own files: rank 0 alone
+// runs them and tells the others how they ended, so a file is written once and a failing step stops every
+// rank with the same exit code.
 //
 // Batch: `throng run A.yaml B.yaml jobs/` runs every job (folders: their *.yaml, *.yml) spread over the MPI
 // ranks; a failing job does not stop the others; a summary lists them (drivers/batch.h). Before anything runs,
@@ -39,8 +42,10 @@
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 #include <throng/linalg/mpi.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <map>
 #include <set>
@@ -81,6 +86,45 @@ class StdoutRedirect {
   int saved_ = -1;
 };
 
+// Runs `step` on rank 0 alone and gives every rank its outcome: rank 0 rethrows its own error, the others throw
+// one of the same kind (exit code) and message, so all ranks leave the pipeline at the same step. The other
+// ranks get no result (the steps run this way make no crowd). One rank: just runs it.
+template <class Step>
+std::optional<StepResult> on_rank_0(Step&& step) {
+  if (mpi::size() == 1) return step();
+  std::optional<StepResult> result;
+  std::exception_ptr failure;
+  std::vector<std::byte> outcome;  // empty: done; else the exit code, then the message
+  auto record = [&](ExitCode code, const char* message) {
+    failure = std::current_exception();
+    outcome.push_back(static_cast<std::byte>(static_cast<int>(code)));
+    for (const char* c = message; *c != '\0'; ++c) outcome.push_back(static_cast<std::byte>(*c));
+  };
+  if (mpi::rank() == 0) {
+    try {
+      result = step();
+    } catch (const Error& e) {
+      record(e.exit_code(), e.what());
+    } catch (const YAML::Exception& e) {
+      record(ExitCode::usage, e.what());
+    } catch (const std::exception& e) {
+      record(ExitCode::internal, e.what());
+    }
+  }
+  mpi::broadcast(outcome, 0);
+  if (failure) std::rethrow_exception(failure);
+  if (outcome.empty()) return result;
+  std::string message;
+  for (std::size_t k = 1; k < outcome.size(); ++k) message.push_back(static_cast<char>(outcome[k]));
+  switch (static_cast<ExitCode>(static_cast<int>(outcome[0]))) {
+    case ExitCode::usage: throw ConfigError(message);
+    case ExitCode::invalid_input: throw InputError(message);
+    case ExitCode::io: throw IoError(message);
+    case ExitCode::not_converged: throw NumericalError(message);
+    default: throw std::runtime_error(message);
+  }
+}
+
 // The outputs a job's steps name inline (crowd files and pictures), as absolute normal paths.
 std::vector<std::filesystem::path> named_outputs(const ConfigNode& job) {
   std::vector<std::filesystem::path> out;
@@ -112,7 +156,7 @@ class RunCommand final : public Command {
       const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
       std::optional<StdoutRedirect> silent;
       if (!writer) silent.emplace(-1);
-      if (auto report = run_pipeline(job_paths_.front(), context, writer)) context.print(*report);
+      if (auto report = run_pipeline(job_paths_.front(), context, true)) context.print(*report);
       return;
     }
     // A batch (drivers/batch.h): several jobs or folders, spread over the MPI ranks, failures collected. Every
@@ -125,7 +169,7 @@ class RunCommand final : public Command {
       std::vector<JobOutcome> outcomes;
       {
         const StdoutRedirect to_stderr(2);
-        outcomes = run_batch(jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, context, true); }, context);
+        outcomes = run_batch(jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, context, false); }, context);
       }
       finish_batch(outcomes, context);
     } catch (...) {
@@ -156,9 +200,12 @@ class RunCommand final : public Command {
     }
   }
 
-  /// Runs one pipeline and returns its report (nullopt after --print-config). Crowd files are written only
-  /// when `writer` (rank 0 of a collective run).
-  std::optional<Report> run_pipeline(const std::filesystem::path& job_path, Context& context, bool writer) {
+  /// Runs one pipeline and returns its report (nullopt after --print-config). `collective`: every rank runs
+  /// this pipeline (one job under mpiexec), so crowd files are written by rank 0 only and the steps that write
+  /// their own files run on rank 0 only (on_rank_0); otherwise (a batch: each rank its own jobs) this rank
+  /// writes everything.
+  std::optional<Report> run_pipeline(const std::filesystem::path& job_path, Context& context, bool collective) {
+    const bool writer = !collective || mpi::rank() == 0;
     const ConfigNode job = context.load_job(job_path);
     if (context.print_config_if_asked(job.yaml())) return std::nullopt;
     const std::vector<ConfigNode> steps = job.at("steps").elements();
@@ -230,7 +277,11 @@ class RunCommand final : public Command {
             }
           }
           const ConfigNode own_node(own, source);
-          result = command->run_step(own_node, inputs, context);
+          if (collective && !command->makes_crowd()) {
+            result = on_rank_0([&] { return command->run_step(own_node, inputs, context); });
+          } else {
+            result = command->run_step(own_node, inputs, context);
+          }
         } catch (const ConfigError& e) {
           throw ConfigError(label + ": " + e.what());
         } catch (const InputError& e) {
