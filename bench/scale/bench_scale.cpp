@@ -4,10 +4,18 @@
 // Scenes: the tests' marching grid (tests/graph/synthetic_crowd.h), every frame sampled. The request holds the
 // first and the last frame of everyone and drags 20 agents of the formation's front row over the middle 21
 // frames (an interactive drag of a small group inside a large crowd). Cases, named study/series/key:x:
-//  * size/local_drag/halo:H/agents:N     LocalEditor, N agents × 300 frames, parts of ~5,000 vertices
-//                                        (local.parts = vertices / 5,000), local.halo = H: seconds per drag with
-//                                        the region's factorisations cached (counters: region vertices, region
-//                                        build seconds, memory, METIS seconds). Target: ≤ 0.1 s at 5,000 agents.
+//  * size/local_drag/halo:H/agents:N     LocalEditor, N agents × 300 frames, local.parts: auto with
+//                                        local.vertices_per_part = --scale_vertices_per_part (default: the
+//                                        option's default), local.halo = H: seconds per drag with the region's
+//                                        factorisations cached (counters: region vertices, region build seconds,
+//                                        memory, METIS seconds, step 1 seconds, and the region's edge in time
+//                                        (edit::BoundaryStep): edge_added_m, what the edit added to a step across
+//                                        it; edge_reference_m, the agent's fastest input step it is judged
+//                                        against; edge_step_m, that step; edge_jump = is_jump()).
+//                                        Target: ≤ 0.1 s at 5,000 agents, whatever the crowd size.
+//  * parts/local_drag/halo:H/vertices_per_part:V   the same drag at --scale_parts_agents (5,000) agents × 300
+//                                        frames for each part size of --scale_part_sizes: the trade between a
+//                                        drag's cost and the jump at the region's edge that picks the defaults.
 //  * size/global_drag/B/agents:N         Editor on backend B (eigen, petsc): seconds per drag after precompute
 //                                        (precompute seconds, memory, factor entries, bytes a drag must read).
 //  * frames/local_drag/halo:1/frames:F,  1,000 agents × F frames.
@@ -24,6 +32,7 @@
 //
 // Sizes are arguments (comma-separated lists), so a run stays as long as it needs to be:
 //   --scale_agents=1000,2000,5000,10000  --scale_frames=100,300,1000  --scale_threads=1,2  --scale_halos=0,1,2
+//   --scale_vertices_per_part=N  --scale_part_sizes=1000,2000,5000  --scale_parts_agents=5000
 //   --scale_eigen_max=2000 (the direct global solve's largest crowd: its factors outgrow 23 GB beyond)
 //   --scale_strong_agents=2000  --scale_weak_agents=1000  --scale_out=DIR (default bench-scale)
 // plus Google Benchmark's own --benchmark_filter. Results: the console, and DIR/scale.csv, scale.json and one
@@ -67,6 +76,9 @@ struct Sweep {
   std::vector<int> frames{100, 300, 1000};
   std::vector<int> threads{1, 2};
   std::vector<int> halos{0, 1, 2};
+  int vertices_per_part = edit::LocalOptions{}.vertices_per_part;
+  std::vector<int> part_sizes{1000, 2000, 5000};
+  int parts_agents = 5000;
   int eigen_max = 2000;
   int strong_agents = 2000;
   int weak_agents = 1000;
@@ -128,11 +140,12 @@ void common_counters(benchmark::State& state, int agents, int frames, int thread
   state.counters["memory_sum_MB"] = mpi::sum(memory_mb);
 }
 
-void local_drag(benchmark::State& state, int agents, int frames, int halo, int threads) {
+void local_drag(benchmark::State& state, int agents, int frames, int halo, int vertices_per_part, int threads) {
   const ThreadLimit limit(static_cast<std::size_t>(threads));
   Scene s = scene(agents, frames, "eigen");
   s.options.solver.blas_threads = threads;
-  s.options.local.parts = std::max(1, agents * frames / 5000);  // parts of ~5,000 vertices
+  s.options.local.parts = edit::LocalOptions::by_size;
+  s.options.local.vertices_per_part = vertices_per_part;
   s.options.local.halo = halo;
   try {
     const double before = heap_mb();
@@ -153,6 +166,14 @@ void local_drag(benchmark::State& state, int agents, int frames, int halo, int t
     state.counters["region_build_s"] = build;
     state.counters["partition_s"] = r.partition_seconds;
     state.counters["regions_built"] = r.regions_built;
+    state.counters["vertices_per_part"] = vertices_per_part;
+    state.counters["factor_entries"] = r.factor_nonzeros;
+    state.counters["step1_s"] = r.step1_seconds;  // of the last drag: the pin basis makes it a dense product
+    const edit::BoundaryStep edge = editor.boundary_step();
+    state.counters["edge_added_m"] = edge.added_m;
+    state.counters["edge_reference_m"] = edge.reference_m();
+    state.counters["edge_step_m"] = edge.edited_m;
+    state.counters["edge_jump"] = edge.is_jump() ? 1 : 0;
     state.SetLabel(r.factorization);
   } catch (const Error& e) {
     state.SkipWithError(e.what());
@@ -214,7 +235,15 @@ void register_benchmarks(const Sweep& sweep) {
   // Size: agents × 300 frames.
   for (int halo : sweep.halos) {
     for (int agents : sweep.agents) {
-      add("size/local_drag/halo:" + std::to_string(halo) + "/agents:" + std::to_string(agents), 10, local_drag, agents, 300, halo, 1);
+      add("size/local_drag/halo:" + std::to_string(halo) + "/agents:" + std::to_string(agents), 10, local_drag, agents, 300, halo,
+          sweep.vertices_per_part, 1);
+    }
+  }
+  // Part size at a fixed crowd.
+  for (int halo : sweep.halos) {
+    for (int size : sweep.part_sizes) {
+      add("parts/local_drag/halo:" + std::to_string(halo) + "/vertices_per_part:" + std::to_string(size), 10, local_drag,
+          sweep.parts_agents, 300, halo, size, 1);
     }
   }
   for (int agents : sweep.agents) {
@@ -225,13 +254,13 @@ void register_benchmarks(const Sweep& sweep) {
   }
   // Frames: 1,000 agents × F frames.
   for (int frames : sweep.frames) {
-    add("frames/local_drag/halo:1/frames:" + std::to_string(frames), 10, local_drag, 1000, frames, 1, 1);
+    add("frames/local_drag/halo:1/frames:" + std::to_string(frames), 10, local_drag, 1000, frames, 1, sweep.vertices_per_part, 1);
     if (petsc) add("frames/global_drag/petsc/frames:" + std::to_string(frames), 2, global_drag, 1000, frames, "petsc", 1, "");
   }
   // Strong (fixed size) and weak (size per worker fixed) scaling over threads; ranks by mpiexec -np.
   for (int threads : sweep.threads) {
     const std::string t = std::to_string(threads);
-    add("strong/local_drag/halo:1/threads:" + t, 10, local_drag, sweep.strong_agents, 300, 1, threads);
+    add("strong/local_drag/halo:1/threads:" + t, 10, local_drag, sweep.strong_agents, 300, 1, sweep.vertices_per_part, threads);
     if (petsc) {
       add("strong/global_drag/petsc/threads:" + t, 2, global_drag, sweep.strong_agents, 300, "petsc", threads, "");
       const int weak = sweep.weak_agents * threads * mpi::size();
@@ -296,6 +325,9 @@ int main(int argc, char** argv) {
       {"--scale_frames=", [&](const char* v) { sweep.frames = int_list(v); }},
       {"--scale_threads=", [&](const char* v) { sweep.threads = int_list(v); }},
       {"--scale_halos=", [&](const char* v) { sweep.halos = int_list(v); }},
+      {"--scale_vertices_per_part=", [&](const char* v) { sweep.vertices_per_part = std::stoi(v); }},
+      {"--scale_part_sizes=", [&](const char* v) { sweep.part_sizes = int_list(v); }},
+      {"--scale_parts_agents=", [&](const char* v) { sweep.parts_agents = std::stoi(v); }},
       {"--scale_eigen_max=", [&](const char* v) { sweep.eigen_max = std::stoi(v); }},
       {"--scale_strong_agents=", [&](const char* v) { sweep.strong_agents = std::stoi(v); }},
       {"--scale_weak_agents=", [&](const char* v) { sweep.weak_agents = std::stoi(v); }}};

@@ -212,7 +212,7 @@ void write_results(const fs::path& dir, std::vector<Row> rows) {
     svg << "<svg xmlns='http://www.w3.org/2000/svg' width='1200' height='520' font-family='sans-serif'>\n"
         << "<rect width='1200' height='520' fill='white'/>\n";
     const std::vector<std::pair<std::string, double>> target =
-        study == "size" ? std::vector<std::pair<std::string, double>>{{"0.1 s target", 0.1}} : std::vector<std::pair<std::string, double>>{};
+        study == "size" || study == "parts" ? std::vector<std::pair<std::string, double>>{{"0.1 s target", 0.1}} : std::vector<std::pair<std::string, double>>{};
     panel(svg, 80, 50, 480, 400, "Time (" + study + ", median)", x_labels[study], "seconds", panels.first, target);
     panel(svg, 700, 50, 460, 400, "Memory held (max over ranks)", x_labels[study], "MB", panels.second, {});
     svg << "</svg>\n";
