@@ -4,7 +4,8 @@
 //
 // Iteration. Find every contact (broad_phase.h: exact, every pair, every obstacle, one contact per colliding frame
 // interval, so a pair too close over many frames has many, and the deepest that can move is always among
-// them). Order them deepest first
+// them; after the first search incrementally, contact_tracker.h: only segments that moved are examined again,
+// with exactly the full search's result). Order them deepest first
 // (deficit = clearance − distance; ties by kind, then indices) and take each one whose trajectory vertices are
 // not yet used by a taken contact this iteration ("every disjoint collision in one solve", beyond the paper).
 // For each taken contact the point of closest approach p(s) = (1 − s) v_i + s v_{i+1} of each trajectory gets
@@ -14,8 +15,9 @@
 //    whole push. Direction (`pair_push`): `apart` is their offset p_a − p_b (the paper's rule); `sideways`
 //    (default) is the part of the offset across their relative motion over the interval. Most contact intervals
 //    of a pair end before or start after its closest moment, where the offset points along the motion; pushing
-//    along it holds one agent back and then rushes it past the other (measured: bump 1.75 → 8.6 m/s at most
-//    with `apart`, 6.3 m/s with `sideways`, fewer iterations). Zero offset: across their relative motion;
+//    along it holds one agent back and then rushes it past the other (measured on the bump config: 1.75 → 8.6
+//    m/s at most with `apart`, 99th percentile 3.8; 6.5 m/s with `sideways`, 99th percentile 2.9). Zero offset:
+//    across their relative motion;
 //  * agent and obstacle: the point moves out to the clearance plus push_fraction·clearance/2. Direction
 //    (`obstacle_pull`): `nearest` moves it toward the nearest boundary point (the paper's rule); `sideways`
 //    (default) moves it across its own motion relative to the obstacle, to the nearer of the two sides — for a
@@ -40,25 +42,36 @@
 // weight, so a trajectory without pins stays well conditioned; a push then moves it almost rigidly).
 //
 // Plausibility (report: input and output max speed and acceleration). Measured with the defaults: bump config
-// 1.75 → 6.3 m/s at most (99th percentile 2.9), Figure 9 config 1.2 → 13 m/s (99th percentile 2.5: a few
+// 1.75 → 6.5 m/s at most (99th percentile 2.9), Figure 9 config 1.2 → 13 m/s (99th percentile 2.5: a few
 // agents round the wall's corners within two frames, where the clearance is only just met), crossing
-// 1.33 → 3.9 m/s, real data at most 1.4× the fastest recorded pedestrian. Pushes are met exactly at contact
-// points only, so a contact cleared at the last iteration can leave a sharp turn; a speed limit is not a
-// constraint of this method.
+// 1.33 → 3.9 m/s (99th percentile 1.9), real data at most 1.001× the fastest recorded pedestrian. Pushes are
+// met exactly at contact points only, so a contact cleared at the last iteration can leave a sharp turn; a
+// speed limit is not a constraint of this method.
 //
-// Solver (src/track_solver.h). Each touched trajectory's system (features of its input shape, its pins) is
-// assembled and factorised once, when it is first pushed, and cached for the run; each iteration's pushes enter
-// as general linear constraints through the Schur complement on that factor (no refactorisation per
-// iteration, no penalty, so every spread works). Two implementations of that method: `banded` (the default:
-// the band Cholesky of the trajectory's pentadiagonal-in-vertices system, forward substitutions starting at
-// each constraint's first unknown) and `linalg` (throng/linalg's ConstrainedLeastSquares, CHOLMOD with its
-// cached Schur columns). Measured (bench_collide BM_TrackMethod), total (solve) on 2 shared cores under load
-// ~4.5, one run each: Figure 8 scene (bench scenes::bump(5, 450): 50 agents × 450
-// frames, 9 iterations) banded 2.25 s (2.17 s), linalg 2.80 s (2.69 s); Figure 9 scene (61 agents × 900 frames)
-// banded 4.47 s (3.49 s, 123 iterations), linalg 8.24 s (5.48 s; rounding differences led it along another
-// path, 278 iterations). Banded is the default: no per-call CHOLMOD overhead, and each forward substitution
-// starts at its constraint. The cost is the Schur complement itself, m back-substitutions and an m × m dense
-// factorisation for m pushed rows (hundreds per trajectory when a pair overlaps over many frames).
+// Solver (src/track_solver.h). Each touched trajectory's system Q (features of its input shape, its pins) is
+// assembled and factorised once, when it is first pushed, and cached for the run; each iteration's pushes are
+// met exactly (no penalty, so every spread works). Three implementations of that one method (TrackMethod, for
+// benchmarks and tests; they agree to 1e-10 m):
+//  * `eliminate` (the default): each push row is solved for one of its two unknowns, so the rest is an
+//    unconstrained band system that differs from Q only in a window around the pushed vertices; the unknowns
+//    before and after the window are eliminated through Q's top-down and reversed band Cholesky factors (made
+//    once), and only the window is factorised per solve: O(window · 9² + length · 5). The pushes of one
+//    trajectory in one iteration span about 5 % of it in the shipped configs.
+//  * `schur`: the band factor of Q once, the pushes through the Schur complement on it: m back substitutions and
+//    an m × m dense factorisation for m pushed rows (hundreds per trajectory in the first iterations).
+//  * `linalg`: throng/linalg's ConstrainedLeastSquares (CHOLMOD, its Schur complement over added constraints).
+// Measured (bench_collide BM_TrackMethod, solve seconds, one run each, 2 cores shared with other work, load
+// average 4-6): synthetic Figure 8 (scenes::bump(5, 450): 50 agents × 450 frames, 9 iterations) eliminate 0.12,
+// schur 2.28, linalg 1.86; synthetic Figure 9 (61 × 900) eliminate 0.92 (225 iterations), schur 5.06 (123),
+// linalg 6.43 (259): rounding differences lead the runs along different paths, each converging.
+//
+// Speed (bench_collide BM_Config: the shipped configs' collide steps on the crowds their sketch and merge steps
+// make; medians of 3 on this machine's 2 cores shared with other builds and tests, load average 6-7; the table
+// and the history are in docs/commands/collide.md): the two groups bumping (50 × 481, 55 iterations) 0.17 s with
+// 2 threads, 0.12 s CPU on one (target 0.2 s); the narrow opening (37 × 601, 30 iterations) 0.12 s, 0.08 s
+// (target 5 s); the crossing (1,000 × 301, 271 iterations) 9.6 s, 6.6 s (target 30 s), half detection (22
+// million segments examined again over the run: a pushed trajectory moves at every frame), half solves. Was
+// 0.88 s, 0.63 s and 35.5 s with a full grid search per iteration and Schur-complement solves.
 //
 // Pins. With pin_ends, every trajectory's first and last present frame is pinned (for a crowd present throughout,
 // the clip's first and last frames: paper Figure 8); `fixed_agents` pins whole trajectories. A pushed point
@@ -105,7 +118,8 @@ enum class ObstaclePull { sideways, nearest };
 /// Which way two colliding agents are pushed (see "Iteration" above).
 enum class PairPush { sideways, apart };
 
-/// How each trajectory's constrained system is solved (the same method, see "Solver" above; for benchmarks).
+/// How each trajectory's constrained system is solved (the same method, see "Solver" above; for benchmarks and
+/// tests).
 enum class TrackMethod { eliminate, schur, linalg };
 
 struct Options {
@@ -156,7 +170,7 @@ struct Report {
   std::string stop_reason;
   double detect_seconds = 0, solve_seconds = 0;
   std::vector<std::size_t> history;    ///< contacts (one per colliding frame interval) after each iteration
-  int factorizations = 0;              ///< trajectories factorised (one factorisation each for the whole run)
+  int factorizations = 0;              ///< trajectories assembled and factorised (once each for the whole run)
   int ranks = 1;                       ///< MPI ranks the solves were spread over
 
   [[nodiscard]] std::size_t remaining() const noexcept { return pair_contacts + obstacle_contacts; }
