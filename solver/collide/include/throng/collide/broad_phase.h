@@ -85,7 +85,8 @@ struct Gaps {
 
 /// Finds every contact of `crowd` (and with `obstacles`) for clearance margin `margin` (metres, ≥ 0).
 /// `agents`, when not empty, restricts the search to pairs with at least one agent flagged (and obstacle contacts
-/// to flagged agents): the incremental search after a solve moved only those. Flags are by agent index.
+/// to flagged agents), for callers that know which agents moved; flags are by agent index. (The repair loop
+/// searches incrementally with contact_tracker.h, which re-examines only the moved segments.)
 [[nodiscard]] Contacts find_contacts(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, double margin,
                                      BroadPhase method = BroadPhase::grid, const std::vector<char>& agents = {});
 
