@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <vector>
 
 using namespace throng;
@@ -79,13 +80,15 @@ TEST_CASE("the incremental tracker equals a full search after every iteration of
   }
 }
 
-TEST_CASE("the incremental tracker follows arbitrary moves: large jumps, unmoved agents, absent frames kept") {
+TEST_CASE("the incremental tracker follows arbitrary moves: large jumps, nudges, agents leaving and coming back") {
   // Moves a repair does not make: whole agents jumping across the scene (every round in three: every interval
   // rebuilt) and single vertices nudged, by less than the skin's half (0.075 m) or more.
   const auto obstacles = scenes::scattered_obstacles();
   CrowdMotion crowd = scenes::random_crowd(90, 30, 15.0, 0.12, 7);
   ContactTracker tracker(crowd, obstacles, 0.2, 0.15);
   Rng rng(11);
+  std::pair<std::size_t, std::size_t> gone{0, 0};  // (agent, frame) made absent
+  Eigen::Vector3d gone_at = crowd.position(0, 0);
   for (int round = 0; round < 12; ++round) {
     INFO("round " << round);
     for (int move = 0; move < 15; ++move) {
@@ -97,6 +100,15 @@ TEST_CASE("the incremental tracker follows arbitrary moves: large jumps, unmoved
       for (std::size_t f = f0; f < f1; ++f) {
         if (crowd.present(f, a)) crowd.position(f, a) += shift;
       }
+    }
+    // Presence changes: an agent in contact leaves at a frame of its contact, and comes back there a round later.
+    if (round % 4 == 1 && !tracker.contacts().pairs.empty()) {
+      const PairContact& c = tracker.contacts().pairs[rng.below(tracker.contacts().pairs.size())];
+      gone = {c.a, c.interval + 1 < crowd.frame_count() - 1 ? c.interval + 1 : c.interval};
+      gone_at = crowd.position(gone.second, gone.first);
+      crowd.position(gone.second, gone.first) = Eigen::Vector3d::Constant(std::nan(""));
+    } else if (round % 4 == 2) {
+      crowd.position(gone.second, gone.first) = gone_at;
     }
     tracker.update(crowd);
     require_same_contacts(tracker.contacts(), find_contacts(crowd, obstacles, 0.2, BroadPhase::all_pairs));
