@@ -7,6 +7,10 @@
 // Run:   bench_edit --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // PETSc on 2 ranks:  mpiexec -np 2 bench_edit --benchmark_filter=petsc ...  (iteration counts are fixed so the
 // ranks' collective solves line up; only rank 0 prints).
+// Memory: precompute and drag cases report the heap the editor holds after precompute (mallinfo2 difference:
+// graph, features, both objectives, the solvers' blocks and the backend's factors or distributed rows and
+// multigrid hierarchy) on each rank, as memory_MB (this rank), memory_max_MB and memory_sum_MB (over the ranks):
+// run petsc cases under mpiexec -np 1 and -np 2 to compare memory per rank.
 #include "../../tests/graph/synthetic_crowd.h"
 
 #include <throng/core/errors.h>
@@ -16,6 +20,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
+#include <malloc.h>
 #include <memory>
 #include <string>
 
@@ -49,6 +54,20 @@ Scene scene(int agents, const std::string& backend) {
   return s;
 }
 
+// Heap in use, MB (glibc mallinfo2: arenas and mmapped blocks). CHOLMOD, PETSc, hypre and Eigen allocate through
+// malloc; a difference of two readings is what the code between them holds.
+double heap_mb() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
+}
+
+void memory_counters(benchmark::State& state, double megabytes) {
+  state.counters["memory_MB"] = megabytes;
+  state.counters["memory_max_MB"] = mpi::max(megabytes);
+  state.counters["memory_sum_MB"] = mpi::sum(megabytes);
+  state.counters["ranks"] = mpi::size();
+}
+
 void describe(benchmark::State& state, const edit::Report& r) {
   state.counters["unknowns"] = static_cast<double>(r.unknowns);
   state.counters["features"] = static_cast<double>(r.spatial_features + r.temporal_features + r.spatiotemporal_features);
@@ -74,15 +93,21 @@ void graph_build(benchmark::State& state, int agents) {
 void precompute(benchmark::State& state, int agents, const std::string& backend) {
   const Scene s = scene(agents, backend);
   std::unique_ptr<edit::Editor> editor;
+  double held = 0;
   try {
     for (auto _ : state) {
       state.PauseTiming();
       editor.reset();
+      const double before = heap_mb();
       editor = std::make_unique<edit::Editor>(s.crowd, s.options, s.request);
       state.ResumeTiming();
       editor->precompute();
+      state.PauseTiming();
+      held = heap_mb() - before;
+      state.ResumeTiming();
     }
     describe(state, editor->report());
+    memory_counters(state, held);
   } catch (const Error& e) {
     state.SkipWithError(e.what());
   }
@@ -91,8 +116,10 @@ void precompute(benchmark::State& state, int agents, const std::string& backend)
 void drag(benchmark::State& state, int agents, const std::string& backend) {
   Scene s = scene(agents, backend);
   try {
+    const double before = heap_mb();
     edit::Editor editor(s.crowd, s.options, s.request);
     editor.precompute();
+    const double held = heap_mb() - before;
     double step = 0;
     for (auto _ : state) {
       // A new position for the dragged tail each time, as an interactive drag produces.
@@ -101,6 +128,7 @@ void drag(benchmark::State& state, int agents, const std::string& backend) {
       benchmark::DoNotOptimize(editor.deform(s.request).data());
     }
     describe(state, editor.report());
+    memory_counters(state, held);
     state.counters["refactorisations"] = editor.report().factorizations - 2;
   } catch (const Error& e) {
     state.SkipWithError(e.what());

@@ -2,6 +2,7 @@
 
 #include <test_paths.h>
 #include <throng/io/crowd_file.h>
+#include <throng/linalg/solver_options.h>
 
 #include <fstream>
 
@@ -108,5 +109,5 @@ TEST_CASE("throng edit under mpiexec -np 2 with the petsc backend writes the eig
   for (std::size_t k = 0; k < eigen.motion.positions.size(); ++k) {
     gap = std::max(gap, std::abs(eigen.motion.positions[k] - petsc.motion.positions[k]));
   }
-  CHECK(gap < 1e-8);  // as in edit_probe: measured ~1e-11 m
+  CHECK(gap < 1e4 * throng::linalg::SolverOptions{}.relative_tolerance);  // as in edit_probe: measured ~1e-11 m
 }

@@ -417,7 +417,15 @@ ConstrainedLeastSquares::ConstrainedLeastSquares(ConstrainedLeastSquares&&) noex
 ConstrainedLeastSquares& ConstrainedLeastSquares::operator=(ConstrainedLeastSquares&&) noexcept = default;
 
 void ConstrainedLeastSquares::set_objective(const SparseMatrix& A, const Eigen::Ref<const Eigen::VectorXd>& weights) {
+  set_objective(SparseMatrix(A), weights);
+}
+
+void ConstrainedLeastSquares::set_objective(SparseMatrix&& A, const Eigen::Ref<const Eigen::VectorXd>& weights) {
   State& s = *state_;
+  if (A.rows() != weights.size()) {
+    throw std::invalid_argument("ConstrainedLeastSquares: " + std::to_string(weights.size()) + " weights for " +
+                                std::to_string(A.rows()) + " rows");
+  }
   if (A.cols() != s.n()) {
     // A new unknown count drops the pins, constraints and hints that referred to the old one.
     s.pinned.clear();
@@ -425,7 +433,7 @@ void ConstrainedLeastSquares::set_objective(const SparseMatrix& A, const Eigen::
     s.row_norm.resize(0);
     s.modes.resize(0, 0);
   }
-  s.A = A;
+  s.A = std::move(A);
   s.A.makeCompressed();
   s.analysis_stale = true;
   set_weights(weights);
