@@ -158,3 +158,33 @@ TEST_CASE("the eigen backend adopts an analysis only for the pattern it was made
     CHECK_FALSE(iterative->adopt_analysis(*first, Q1));
   }
 }
+
+TEST_CASE("the petsc backend is iterative by default and direct as preonly with a Cholesky factor") {
+  if (!has_petsc()) {
+    WARN("no PETSc in this build: skipped");
+    return;
+  }
+  CHECK(make_spd_solver({})->is_direct());  // eigen
+  const SparseMatrix A = throng::test::random_objective(300, 41);
+  const SparseMatrix Q = SparseMatrix(A.transpose()) * A;
+  for (const auto& [options, direct] : {std::pair<std::string, bool>{"", false},
+                                        {"-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps", true}}) {
+    CAPTURE(options);
+    SolverOptions o;
+    o.backend = "petsc";
+    o.petsc_options = options;
+    o.petsc_prefix = direct ? "t_direct_" : "t_iterative_";
+    auto solver = make_spd_solver(o);
+    solver->analyze(Q);
+    CHECK(solver->is_direct() == direct);
+    CHECK(solver->owned_columns().empty());  // one rank reads every column
+    solver->factorize(Q);
+    const Eigen::MatrixXd B = throng::test::random_matrix(300, 1, 42);
+    Eigen::MatrixXd X(300, 1);
+    solver->solve(B, X);
+    // Direct: a backward-stable Cholesky leaves ~ε · cond(Q) ≈ 1e-14 relative (cond ≈ 1e2, problems.h), 1e-11
+    // with margin; iterative: CG stops at relative_tolerance on this residual.
+    const double tolerance = direct ? 1e-11 : 10 * o.relative_tolerance;
+    CHECK((Q * X - B).norm() <= tolerance * B.norm());
+  }
+}

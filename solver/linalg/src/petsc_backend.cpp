@@ -14,26 +14,36 @@
 // for the layout, then only this rank's columns, and keeps none of it after the numeric phase. After each
 // solve every rank receives the whole solution, back in the caller's order.
 //
-// Defaults: conjugate gradients with PETSc's algebraic multigrid (GAMG), one part per rank, the convergence
-// test on the true (unpreconditioned) residual for CG (other Krylov methods keep their own norm: MINRES, for
-// one, supports only the preconditioned norm), block size and near null space from the caller's hint.
-// Additive Schwarz on the parts is one option away: -pc_type asm -sub_pc_type icc -parts_per_rank K (one
-// subdomain per METIS part, PCASM's overlap 1).
+// Defaults: conjugate gradients with hypre's BoomerAMG (HMIS coarsening, ext+i interpolation, P_max 4, strength
+// threshold 0.5; PETSc's GAMG where PETSc has no hypre), one part per rank, the convergence test on the true
+// (unpreconditioned) residual for CG (other Krylov methods keep their own norm: MINRES, for one, supports only
+// the preconditioned norm), block size and near null space from the caller's hint (GAMG uses them; BoomerAMG
+// coarsens the scalar graph). GAMG is `-pc_type gamg`; additive Schwarz on the parts `-pc_type asm -sub_pc_type
+// icc -parts_per_rank K` (one subdomain per METIS part, PCASM's overlap 1).
 //
-// GAMG or additive Schwarz, measured (2 cores shared with other work, so times are rough; iteration cap 2000):
-//   battlefield edit (configs/edit-battlefield.yaml, `throng edit --backend petsc`, both steps):
-//     sample_step 24 (70,800 unknowns)  gamg: 1 rank 0.52 s precompute + 0.74 s solve; 2 ranks 1.1 + 1.7 s
-//                                       asm+icc, 1 part per rank: DIVERGED_ITS on 1 and 2 ranks
-//                                       asm+icc, 4 parts per rank: DIVERGED_ITS on 1 rank; 2 ranks 1.0 + 0.6 s
-//     sample_step 4 (112,300 unknowns)  gamg: 1 rank 1.7 + 13.7 s; 2 ranks 2.8 + 22.9 s
-//                                       asm+icc (1 or 4 parts per rank): DIVERGED_ITS on 1 and 2 ranks
-//   bench_linalg BM_PetscSetupAndSolve (a synthetic editing system without the near-null-space hint, pinned at
-//   the first and last sample only): asm+icc converged 2-4× faster than gamg (226-444 against 385-488
-//   iterations, 7×7 and 17×17 agents × 300 samples, 1 and 2 ranks).
-// One-level Schwarz has no coarse space: a drag moves whole paths, a long-range mode its local blocks do not see,
-// so it stalls on the real edits; GAMG's coarse levels (with the translation/rotation/scaling near null space the
-// editor passes) carry that mode and converged in every case. GAMG is the default for robustness. 2 ranks were
-// slower than 1 here: on 2 shared cores the ranks compete with each other and with the rest of the machine.
+// Where the time went (PETSc -log_view, 2 cores shared with other work, load 3-7, so times are rough; iteration
+// counts and flops are not): the editing systems are Laplacian-coordinate energies, fourth order along time
+// (second differences of second differences), so multigrid needs tens to hundreds of CG iterations at the
+// default relative residual 1e-12, each costing a few passes over a matrix of ~90 entries a row.
+//   * battlefield edit (configs/edit-battlefield.yaml on configs/sketch-paper.yaml, 16,600 free unknowns, 2 drags
+//     = 8 pin-basis coordinates per step): the precompute made 16 CG solves for the basis columns (KSPMatSolve
+//     would only loop over them: this PETSc has no block CG, HPDDM), 23 s of a 26 s run on 1 rank. Iterative
+//     backends now skip the basis (least_squares.cpp): 1 rank 26 s -> 6 s with GAMG, 2.4 s with BoomerAMG.
+//   * CG iterations (step 1 + step 2 of the first drag), same conditions:
+//       battlefield        GAMG 173 + 126; GAMG threshold 0.02: 77 + 61 but 3x the setup; unsmoothed
+//                          aggregation 220 + 153; BoomerAMG (defaults above) 45 + 26
+//       bench_scale 200 agents x 300 frames (120,000 unknowns, held at the first and last frame)
+//                          GAMG 312 + 107 (37.8 s a drag); GAMG threshold 0.01: 74 + 50 but 40 s of setup;
+//                          BoomerAMG strength 0.5 with hypre's Falgout coarsening 68 + 20 (19.9 s), with
+//                          HMIS / ext+i / P_max 4 73 + 19 (16.7 s), one run each; the defaults above, rerun:
+//                          72 + 19 (22.9 s a drag on 1 rank, 25.1 s on 2, load 4-5); 1,000 agents
+//                          (600,000 unknowns) 77 + 18, 159 s a drag at load 7 (72 s of CPU), 5.7 GB
+//   * relative tolerance: 1e-10 instead of 1e-12 saves ~20% of the iterations; the battlefield result then
+//     moves 3e-6 m from the direct solve (3.8e-8 m at 1e-12): the default stays 1e-12.
+//   * additive Schwarz + ICC (earlier measurements, GAMG era): DIVERGED_ITS on the battlefield at 1 part per rank
+//     and on 1 rank at 4 parts; one-level Schwarz has no coarse space, and a drag moves whole paths.
+// Two ranks were no faster than one on 2 shared cores: the ranks compete with each other and the rest of the
+// machine.
 #include "backends.h"
 #include "blas_threads.h"
 #include "petsc_check.h"
@@ -262,9 +272,8 @@ class PetscSpdSolver final : public SpdSolver {
 
   // BoomerAMG's settings for these systems (see the measurements at the top), each only where the user's options
   // (PETSC_OPTIONS, solver.petsc_options) do not give it: HMIS coarsening with extended+i interpolation of at
-  // most 4 entries a row keeps the hierarchy's operators sparse (hypre's default Falgout/classical one grew them
-  // several-fold on the space-time stencils), and a strength threshold of 0.5 suits these 2-D-in-space,
-  // 1-D-in-time stencils better than 0.25.
+  // most 4 entries a row, the usual way to keep hypre's coarse operators sparse, and a strength threshold of 0.5
+  // (battlefield: 0.25 took 2.2 s, 0.5 1.2 s for the same iteration counts).
   void set_default_options() {
     const std::pair<const char*, const char*> defaults[] = {{"pc_hypre_type", "boomeramg"},
                                                             {"pc_hypre_boomeramg_coarsen_type", "HMIS"},
