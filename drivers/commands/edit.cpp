@@ -140,9 +140,10 @@ Edited edit_crowd(const CrowdFile& input, const EditJob& job, Context& context) 
     e.report["region_boundary"] = r.region_boundary;
     e.report["partition_s"] = r.partition_seconds;
     // The region's edge in time (edit::BoundaryStep): what the edit added to a step there, metres per frame,
-    // the agent's own fastest step it is judged against, and whether that is a jump.
+    // the agent's own fastest step it is judged against (0 when no agent crosses the edge), and whether that
+    // is a jump.
     e.report["region_edge_step_m"] = edge->added_m;
-    e.report["region_edge_reference_m"] = edge->reference_m();
+    e.report["region_edge_reference_m"] = edge->agent >= 0 ? edge->reference_m() : 0.0;
     e.report["region_edge_jump"] = edge->is_jump();
   }
   return e;

@@ -32,7 +32,7 @@
 //   local:                            # local edits (throng/edit/local_edit.h, docs/commands/scale.md)
 //     parts: 0                        # 0 = global solve; auto = parts of about vertices_per_part vertices; or a
 //                                     # METIS part count (the --local-parts flag overrides: N or auto)
-//     vertices_per_part: 5000         # part size for parts: auto (vertices = agents × samples of the clip)
+//     vertices_per_part: 500          # part size for parts: auto (vertices = agents × samples of the clip)
 //     halo: 1                         # parts within this many hops of the reached ones are solved too; -1 = all connected (--halo)
 //     seed: 1                         # METIS seed: same seed, same parts
 //     max_cached_regions: 8           # factorised regions kept for later drags (matters to interactive use)

@@ -59,7 +59,7 @@ struct LocalOptions {
   static constexpr int by_size = std::numeric_limits<int>::max();
 
   int parts = 0;                  ///< METIS parts, ≥ 0 (0: off, global solves; by_size: from vertices_per_part)
-  int vertices_per_part = 5000;   ///< part size when parts = by_size, ≥ 1 (ignored for a given part count)
+  int vertices_per_part = 500;    ///< part size when parts = by_size, ≥ 1 (ignored for a given part count)
   int halo = 1;                   ///< part hops around the reached parts, ≥ 0; −1: every connected part
   std::uint64_t seed = 1;         ///< METIS's seed (same seed, same parts)
   int max_cached_regions = 8;     ///< factorised regions kept for reuse across drags (least recently used go), ≥ 1

@@ -3,7 +3,9 @@
 // remaining parts intact"; ../shared/design/METHODS.md §1.4).
 //
 // Method. The motion graph is split once into LocalOptions::parts parts by METIS (throng/graph/partition.h,
-// over formation and motion edges). For each deform():
+// over formation and motion edges), or with parts = LocalOptions::by_size into parts of about
+// vertices_per_part vertices, so that a region's size, and a drag's cost, do not grow with the crowd. For each
+// deform():
 //  1. Reached vertices: handles whose target differs from their current position (a pin that keeps a vertex
 //     where it is reaches nothing) and every vertex a general constraint names. Reached parts: their parts.
 //  2. Region R: the reached parts and every part within LocalOptions::halo hops of them in the part adjacency.
@@ -20,11 +22,16 @@
 // interactive session commits when the user lets go, so the next edit builds on it). Handles always target
 // the request's positions (pins without a position: the input position), as in the Editor.
 //
-// Cache. A region's assembled subproblem and both factorisations are kept, keyed by the region's parts, its
-// pinned handles and its constraint rows; a drag that moves the same handles again (any offsets) reuses them
-// and costs back-substitutions only (Report::factorizations and regions_built do not grow). Committing does
-// not invalidate anything: it changes only the pinned values. Up to LocalOptions::max_cached_regions regions are
-// kept, the least recently used dropped first.
+// Cache. A region's assembled subproblem and both factorisations are kept, keyed by the region's parts and its
+// pinned handles; new constraint rows or a new grouping of the same handles into pins and drags update the
+// cached region in place (a new Schur complement, a new pin basis; no refactorisation, as in the Editor).
+// Pins reach the solvers as coordinates in the handles' basis (request.h: cos θ, sin θ and a translation per
+// drag, a position per pin) and the boundary's current positions through the right-hand sides, so a drag of the
+// same handles costs step 1 a dense product (no back-substitution) and step 2 one pair of triangular sweeps
+// (Report::factorizations and regions_built do not grow). Committing changes only the boundary's values: the
+// next drag of a region whose boundary moved costs step 1 one back-substitution. Up to
+// LocalOptions::max_cached_regions regions are kept, the least recently used dropped first. A deform's other
+// costs are the request's resolution (over its handles) and the region's own size, not the crowd's.
 //
 // Decisions where the issue is open: the halo is measured in parts (not vertices) because parts are the unit
 // that is factorised and cached; a region is at least one part even when the moved handles sit on a part's
