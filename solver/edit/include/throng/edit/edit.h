@@ -190,8 +190,9 @@ class Editor {
   Editor(const Editor&) = delete;
   Editor& operator=(const Editor&) = delete;
 
-  /// Analyses and factorises both steps for the current handles and constraints. Throws NumericalError when the
-  /// system is singular (naming an agent and frame that are not determined).
+  /// Analyses and factorises both steps for the current handles and constraints, and solves step 1's fixed
+  /// right-hand side once (so no drag pays that back-substitution). Throws NumericalError when the system is
+  /// singular (naming an agent and frame that are not determined) or the constraints contradict each other.
   void precompute();
 
   /// Deforms for `request`. Same handled vertices and constraint kinds as before: back-substitutions only;
