@@ -41,37 +41,6 @@ class Components {
   std::vector<std::size_t> parent_;
 };
 
-// The similarity modes of the unconstrained step-1 energy (translations, rotation, scaling of all vertices),
-// interleaved x, y: a near-null-space hint for multigrid backends.
-Eigen::MatrixXd similarity_modes(const Positions& p) {
-  const Eigen::RowVector2d centre = p.colwise().mean();
-  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
-  for (Index v = 0; v < p.rows(); ++v) {
-    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
-    modes(2 * v, 0) = 1.0;
-    modes(2 * v + 1, 1) = 1.0;
-    modes(2 * v, 2) = -y;
-    modes(2 * v + 1, 2) = x;
-    modes(2 * v, 3) = x;
-    modes(2 * v + 1, 3) = y;
-  }
-  return modes;
-}
-
-Positions as_positions(const Eigen::MatrixXd& x) {
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
-}
-
-// Same shape, pattern and values (both compressed, as setFromTriplets leaves them).
-bool same_matrix(const linalg::SparseMatrix& a, const linalg::SparseMatrix& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
-  const auto nnz = static_cast<std::size_t>(a.nonZeros());
-  const auto outer = static_cast<std::size_t>(a.outerSize()) + 1;
-  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + outer, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
-         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
-}
-
 }  // namespace
 
 void validate(const Options& o) {

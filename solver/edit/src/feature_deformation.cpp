@@ -18,26 +18,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// The similarity modes (translations, rotation, scaling) interleaved x, y: the near-null space of the
-// unconstrained step-1 energy, a hint for multigrid backends (as the Editor gives it).
-Eigen::MatrixXd similarity_modes(const Eigen::Ref<const Positions>& p) {
-  const Eigen::RowVector2d centre = p.rows() > 0 ? Eigen::RowVector2d(p.colwise().mean()) : Eigen::RowVector2d(0, 0);
-  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
-  for (Index v = 0; v < p.rows(); ++v) {
-    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
-    modes(2 * v, 0) = 1.0;
-    modes(2 * v + 1, 1) = 1.0;
-    modes(2 * v, 2) = -y;
-    modes(2 * v + 1, 2) = x;
-    modes(2 * v, 3) = x;
-    modes(2 * v + 1, 3) = y;
-  }
-  return modes;
-}
-
-Positions as_positions(const Eigen::MatrixXd& x) {
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
-}
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <throng/core/parallel.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <complex>
@@ -146,6 +147,34 @@ void set_step2_targets(const FeatureSet& features, const Eigen::Ref<const Eigen:
       }
     }
   });
+}
+
+Eigen::MatrixXd similarity_modes(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& p) {
+  const Eigen::RowVector2d centre = p.rows() > 0 ? Eigen::RowVector2d(p.colwise().mean()) : Eigen::RowVector2d(0, 0);
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(2 * p.rows(), 4);
+  for (Eigen::Index v = 0; v < p.rows(); ++v) {
+    const double x = p(v, 0) - centre.x(), y = p(v, 1) - centre.y();
+    modes(2 * v, 0) = 1.0;
+    modes(2 * v + 1, 1) = 1.0;
+    modes(2 * v, 2) = -y;
+    modes(2 * v + 1, 2) = x;
+    modes(2 * v, 3) = x;
+    modes(2 * v + 1, 3) = y;
+  }
+  return modes;
+}
+
+Eigen::Matrix<double, Eigen::Dynamic, 2> as_positions(const Eigen::MatrixXd& x) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor>>(x.data(), x.rows() / 2, 2);
+}
+
+bool same_matrix(const linalg::SparseMatrix& a, const linalg::SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const auto nnz = static_cast<std::size_t>(a.nonZeros());
+  const auto outer = static_cast<std::size_t>(a.outerSize()) + 1;
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + outer, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + nnz, b.valuePtr());
 }
 
 }  // namespace throng::edit

@@ -42,4 +42,16 @@ void set_step2_targets(const FeatureSet& features, const Eigen::Ref<const Eigen:
 [[nodiscard]] Eigen::Matrix<double, 3, 2> fit_without_scale(const Eigen::Matrix<double, 3, 2>& from,
                                                             const Eigen::Matrix<double, 3, 2>& to);
 
+/// The similarity modes of the unconstrained step-1 energy (translations, rotation, scaling of all vertices),
+/// interleaved x, y: 2·#vertices by 4, a near-null-space hint for multigrid backends.
+///   p  #vertices by 2
+[[nodiscard]] Eigen::MatrixXd similarity_modes(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& p);
+
+/// An unknown vector x (2·#vertices, interleaved as above) as positions, #vertices by 2.
+[[nodiscard]] Eigen::Matrix<double, Eigen::Dynamic, 2> as_positions(const Eigen::MatrixXd& x);
+
+/// Same shape, pattern and values (both compressed, as setFromTriplets leaves them): whether a request's
+/// handle basis or constraint rows changed, so a solver's cached work can be kept.
+[[nodiscard]] bool same_matrix(const linalg::SparseMatrix& a, const linalg::SparseMatrix& b);
+
 }  // namespace throng::edit
