@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "factories.h"
+#include "input_crowds.h"
 #include "job_flags.h"
 
 namespace throng::cli {
@@ -87,20 +88,9 @@ class MergeCommand final : public Command {
     context.limit_threads();
     (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
-    std::vector<CrowdFile> files;
-    files.reserve(inputs_.size());
-    for (const auto& in : inputs_) files.push_back(read_crowd_file(in));
-    std::vector<const CrowdFile*> crowds;
-    std::vector<const Provenance*> sources;
-    std::vector<std::string> names;
-    for (const auto& f : files) {
-      crowds.push_back(&f);
-      sources.push_back(&f.provenance);
-    }
-    for (const auto& in : inputs_) names.push_back(in.string());
-    if (!job_path_.empty()) names.push_back(job_path_.string());
-    MergeDone d = merge_all(crowds, parsed, context);
-    d.crowd.provenance = context.provenance(effective, names, sources);
+    const InputCrowds in = read_input_crowds(inputs_, job_path_);
+    MergeDone d = merge_all(in.crowds, parsed, context);
+    d.crowd.provenance = context.provenance(effective, in.names, in.sources);
     write_crowd_file(output_, d.crowd, d.extra);
     Report r;
     r["output"] = output_.string();

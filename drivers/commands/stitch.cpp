@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "factories.h"
+#include "input_crowds.h"
 #include "job_flags.h"
 
 namespace throng::cli {
@@ -120,25 +121,14 @@ class StitchCommand final : public Command {
     context.limit_threads();
     (void)AtomicOutput(output_);  // a missing or read-only output folder fails now (exit 4), not after the work
 
-    std::vector<CrowdFile> files;
-    files.reserve(inputs_.size());
-    for (const auto& in : inputs_) files.push_back(read_crowd_file(in));
-    std::vector<const CrowdFile*> clips;
-    std::vector<const Provenance*> sources;
-    std::vector<std::string> names;
-    for (const auto& f : files) {
-      clips.push_back(&f);
-      sources.push_back(&f.provenance);
-    }
-    for (const auto& in : inputs_) names.push_back(in.string());
-    if (!job_path_.empty()) names.push_back(job_path_.string());
+    const InputCrowds in = read_input_crowds(inputs_, job_path_);
     const bool writer = mpi::rank() == 0;  // starts MPI when launched by mpiexec
     if (writer && mpi::size() > 1 && parsed.options.solver.backend != "petsc") {
       context.warn("stitch: " + std::to_string(mpi::size()) + " ranks with the " + parsed.options.solver.backend +
                    " backend: every rank solves the whole problem (solver.backend petsc shares it)");
     }
-    Stitched s = stitch_all(clips, parsed, context, writer);
-    s.crowd.provenance = context.provenance(effective, names, sources);
+    Stitched s = stitch_all(in.crowds, parsed, context, writer);
+    s.crowd.provenance = context.provenance(effective, in.names, in.sources);
     if (!writer) return;  // one file and one report, from rank 0
     write_crowd_file(output_, s.crowd, s.extra);
     Report r;
