@@ -91,6 +91,9 @@ TEST_CASE("malformed entries are configuration errors naming the line") {
   CHECK_THROWS_WITH(parse("clip: {first_frame: -2}\n"), Contains("negative"));
   CHECK_THROWS_WITH(parse("clip: {first_frame: 5, last_frame: 5}\n"), Contains("must be after first_frame"));
   CHECK_THROWS_WITH(parse("formation:\n  edits:\n    - {add: [1, 2], remove: [1, 2]}\n"), Contains("exactly one of add"));
+  CHECK_THROWS_WITH(parse("formation:\n  edits:\n    - {add: [3, 3]}\n"), Contains("edit.yaml:3") && Contains("two different agents"));
+  CHECK_THROWS_WITH(parse("formation:\n  edits:\n    - {add: [1, 2], frames: [-1, 4]}\n"), Contains("indices into the input"));
+  CHECK_THROWS_WITH(parse("formation:\n  edits:\n    - {remove: [1, 2], frames: [9, 4]}\n"), Contains("after the last"));
   CHECK_THROWS_WITH(parse("solver: {backend: cuda}\n"), Contains("cuda"));
   CHECK_THROWS_WITH(parse("weights: {beta: -1}\n"), Contains("out of range"));
   CHECK_THROWS_AS(parse("drags:\n  - {offset: [1]}\n"), ConfigError);

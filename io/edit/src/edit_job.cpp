@@ -1,4 +1,5 @@
 #include <throng/core/errors.h>
+#include <throng/io/edge_edits_job.h>
 #include <throng/io/edit_job.h>
 
 #include <limits>
@@ -46,7 +47,7 @@ void bind(OptionBinder& b, Options& o) {
   });
 }
 
-// An input frame index (≥ 0), for the clip and the formation edits.
+// An input frame index (≥ 0), for the clip.
 std::size_t frame_index(const ConfigNode& node) {
   const std::int64_t v = node.as_int();
   if (v < 0) node.fail("frame " + std::to_string(v) + " is negative: frames are indices into the input, from 0");
@@ -74,17 +75,6 @@ std::pair<edit::Frame, edit::Frame> request_range(const ConfigNode& entry) {
   return {request_frame(ends[0]), request_frame(ends[1])};
 }
 
-// `frames: [first, last]` of a formation edit (input frames; last may be `end`), default the whole clip.
-std::pair<std::size_t, std::size_t> input_range(const ConfigNode& entry) {
-  const auto frames = entry.find("frames");
-  if (!frames) return {0, open_end};
-  const std::vector<ConfigNode> ends = frames->elements();
-  if (ends.size() != 2) frames->fail("expected [first, last] (last may be 'end'), found " + std::to_string(ends.size()) + " values");
-  const std::size_t first = frame_index(ends[0]), last = frame_or_end(ends[1]);
-  if (first > last) frames->fail("first frame " + std::to_string(first) + " is after the last " + std::to_string(last));
-  return {first, last};
-}
-
 std::vector<std::int64_t> ids(const ConfigNode& node) {
   std::vector<std::int64_t> out;
   for (const ConfigNode& e : node.elements()) out.push_back(e.as_int());
@@ -104,18 +94,6 @@ YAML::Node flow(std::initializer_list<double> values) {
 }
 
 YAML::Node flow(const Eigen::Vector2d& p) { return flow({p.x(), p.y()}); }
-
-YAML::Node frames_yaml(std::size_t first, std::size_t last) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(static_cast<std::uint64_t>(first));
-  if (last == open_end) {
-    n.push_back("end");
-  } else {
-    n.push_back(static_cast<std::uint64_t>(last));
-  }
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
 
 YAML::Node request_frames_yaml(edit::Frame first, edit::Frame last) {
   YAML::Node n(YAML::NodeType::Sequence);
@@ -166,23 +144,6 @@ void read_local_parts(const ConfigNode& job, edit::Options& o) {
   }
   if (v < 0 || v > 1000000000) parts->fail("value " + std::to_string(v) + " is out of range, expected a part count in [0, 1e9] or auto");
   o.local.parts = static_cast<int>(v);
-}
-
-void read_edge_edits(const ConfigNode& job, edit::Options& o) {
-  const auto formation = job.find("formation");
-  if (!formation) return;
-  const auto edits = formation->find("edits");
-  if (!edits) return;
-  for (const ConfigNode& e : edits->elements()) {
-    const auto add = e.find("add");
-    const auto remove = e.find("remove");
-    if (static_cast<bool>(add) == static_cast<bool>(remove)) e.fail("give exactly one of add: [a, b] or remove: [a, b]");
-    const ConfigNode& pair = add ? *add : *remove;
-    const std::vector<std::int64_t> agents = ids(pair);
-    if (agents.size() != 2) pair.fail("expected two agent ids, found " + std::to_string(agents.size()));
-    const auto [first, last] = input_range(e);
-    o.formation.edits.push_back({agents[0], agents[1], first, last, static_cast<bool>(add)});
-  }
 }
 
 void read_handles(const ConfigNode& job, edit::Request& r) {
@@ -252,7 +213,7 @@ EditJob read_edit_job(const ConfigNode& job) {
   bind(reader, parsed.options);
   read_clip(job, parsed.options);
   read_local_parts(job, parsed.options);
-  read_edge_edits(job, parsed.options);
+  read_edge_edits(job, parsed.options.formation, "the input");
   read_handles(job, parsed.request);
   read_constraints(job, parsed.request);
   if (auto v = job.find("clip_only")) parsed.clip_only = v->as_bool();
@@ -284,16 +245,7 @@ YAML::Node effective_edit_job(const EditJob& job) {
     out["clip"]["last_frame"] = static_cast<std::uint64_t>(o.clip.last_frame);
   }
   if (!o.clip.agents.empty()) out["clip"]["agents"] = ids_yaml(o.clip.agents);
-  if (!o.formation.edits.empty()) {
-    YAML::Node edits(YAML::NodeType::Sequence);
-    for (const EdgeEdit& e : o.formation.edits) {
-      YAML::Node n;
-      n[e.add ? "add" : "remove"] = ids_yaml({e.agent_a, e.agent_b});
-      n["frames"] = frames_yaml(e.first_frame, e.last_frame);
-      edits.push_back(n);
-    }
-    out["formation"]["edits"] = edits;
-  }
+  write_edge_edits(out, o.formation);
   const auto& r = job.request;
   if (!r.pins.empty()) {
     YAML::Node pins(YAML::NodeType::Sequence);

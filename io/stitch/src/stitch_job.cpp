@@ -1,8 +1,8 @@
 #include <throng/core/errors.h>
+#include <throng/io/edge_edits_job.h>
 #include <throng/io/stitch_job.h>
 
 #include <algorithm>
-#include <limits>
 
 namespace throng {
 namespace {
@@ -40,54 +40,6 @@ void bind(OptionBinder& b, stitch::Options& o) {
   b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
 }
 
-constexpr std::size_t to_end = std::numeric_limits<std::size_t>::max();
-
-// An output frame (≥ 0), or `end` for the last bound.
-std::size_t frame_of(const ConfigNode& node, bool end_allowed) {
-  if (end_allowed && node.is_scalar() && node.as_string() == "end") return to_end;
-  const std::int64_t v = node.as_int();
-  if (v < 0) node.fail("frame " + std::to_string(v) + " is negative: frames are indices into the stitched output, from 0");
-  return static_cast<std::size_t>(v);
-}
-
-// formation.edits: [{add: [a, b] | remove: [a, b], frames: [first, last|end]}], by agent id of the first clip,
-// frames of the stitched output (as the edit job's, whose frames are the input's).
-void read_edge_edits(const ConfigNode& job, FormationOptions& o) {
-  const auto formation = job.find("formation");
-  if (!formation) return;
-  const auto edits = formation->find("edits");
-  if (!edits) return;
-  for (const ConfigNode& e : edits->elements()) {
-    const auto add = e.find("add");
-    const auto remove = e.find("remove");
-    if (static_cast<bool>(add) == static_cast<bool>(remove)) e.fail("give exactly one of add: [a, b] or remove: [a, b]");
-    const ConfigNode& pair = add ? *add : *remove;
-    std::vector<std::int64_t> agents;
-    for (const ConfigNode& id : pair.elements()) agents.push_back(id.as_int());
-    if (agents.size() != 2) pair.fail("expected two agent ids, found " + std::to_string(agents.size()));
-    if (agents[0] == agents[1]) pair.fail("an edge needs two different agents, got " + std::to_string(agents[0]) + " twice");
-    EdgeEdit edit{agents[0], agents[1], 0, to_end, static_cast<bool>(add)};
-    if (const auto frames = e.find("frames")) {
-      const std::vector<ConfigNode> ends = frames->elements();
-      if (ends.size() != 2) frames->fail("expected [first, last] (last may be 'end'), found " + std::to_string(ends.size()) + " values");
-      edit.first_frame = frame_of(ends[0], false);
-      edit.last_frame = frame_of(ends[1], true);
-      if (edit.first_frame > edit.last_frame) {
-        frames->fail("first frame " + std::to_string(edit.first_frame) + " is after the last " + std::to_string(edit.last_frame));
-      }
-    }
-    o.edits.push_back(edit);
-  }
-}
-
-YAML::Node flow_ids(std::int64_t a, std::int64_t b) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(a);
-  n.push_back(b);
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
-
 // Maps [0, 1] of one joint into its share of the whole.
 class JointProgress final : public Progress {
  public:
@@ -108,7 +60,7 @@ StitchJob read_stitch_job(const ConfigNode& job) {
   StitchJob s;
   OptionReader reader(job);
   bind(reader, s.options);
-  read_edge_edits(job, s.options.formation);
+  read_edge_edits(job, s.options.formation, "the stitched output");
   job.finish();
   try {
     stitch::validate(s.options);
@@ -123,21 +75,7 @@ YAML::Node effective_stitch_job(const StitchJob& job) {
   stitch::Options options = job.options;
   OptionWriter writer(out);
   bind(writer, options);
-  if (!options.formation.edits.empty()) {
-    YAML::Node edits(YAML::NodeType::Sequence);
-    for (const EdgeEdit& e : options.formation.edits) {
-      YAML::Node n;
-      n[e.add ? "add" : "remove"] = flow_ids(e.agent_a, e.agent_b);
-      YAML::Node frames(YAML::NodeType::Sequence);
-      frames.push_back(static_cast<std::uint64_t>(e.first_frame));
-      if (e.last_frame == to_end) frames.push_back("end");
-      else frames.push_back(static_cast<std::uint64_t>(e.last_frame));
-      frames.SetStyle(YAML::EmitterStyle::Flow);
-      n["frames"] = frames;
-      edits.push_back(n);
-    }
-    out["formation"]["edits"] = edits;
-  }
+  write_edge_edits(out, options.formation);
   return out;
 }
 
