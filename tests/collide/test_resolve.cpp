@@ -225,8 +225,10 @@ TEST_CASE("extreme spreads solve exactly, with and without pinned ends") {
       INFO(summary(result.report));
       CHECK(result.report.iterations > 0);
       CHECK(std::all_of(result.crowd.positions.begin(), result.crowd.positions.end(), [](double v) { return std::isfinite(v); }));
-      // Bounded: no push is ever more than a tenth of a clearance; 60 of them cannot carry anything far.
-      CHECK(result.report.max_displacement <= options.max_displacement);
+      // Bounded: no push is ever more than a tenth of a clearance, and no spread lets the pushes start a drift
+      // (measured 0.23 m at most; the cap max_displacement, 10 m, would hide one by abandoning contacts).
+      CHECK(result.report.max_displacement <= 1.0);
+      CHECK(result.report.abandoned_contacts == 0);
       if (pins) CHECK(check::changed_vertices(scene.crowd, result.crowd, ends(scene.crowd)) == 0);
     }
   }
@@ -303,9 +305,7 @@ TEST_CASE("a hopeless pull stops for lack of progress, well before the cap") {
   options.stall_iterations = 500;
   const Result result = resolve_collisions(scene.crowd, scene.obstacles, options, quiet);
   INFO(summary(result.report));
-  if (!result.report.converged) {
-    CHECK(result.report.iterations < options.max_iterations);
-    CHECK(result.report.stop_reason != "iteration cap reached");
-  }
-  CHECK(result.report.max_displacement <= options.max_displacement);
+  REQUIRE_FALSE(result.report.converged);
+  CHECK(result.report.iterations < options.max_iterations / 10);
+  CHECK((result.report.stop_reason == "no progress" || result.report.stop_reason == "only stuck or abandoned contacts left"));
 }

@@ -22,9 +22,7 @@ class BandCholesky {
   using Index = Eigen::Index;
 
   BandCholesky() = default;
-  /// An all-zero n × n matrix of half-bandwidth p, to be filled with add() then factorised.
-  BandCholesky(Index n, Index p) { reset(n, p); }
-
+  /// An all-zero n × n matrix of half-bandwidth p, to be filled through at() then factorised.
   void reset(Index n, Index p) {
     n_ = n;
     p_ = p;
@@ -37,18 +35,6 @@ class BandCholesky {
   /// Entry (i, j) of the matrix before factorising, i ≥ j, i − j ≤ p.
   double& at(Index i, Index j) { return data_[static_cast<std::size_t>(i * (p_ + 1) + (j - i + p_))]; }
   [[nodiscard]] double at(Index i, Index j) const { return data_[static_cast<std::size_t>(i * (p_ + 1) + (j - i + p_))]; }
-
-  /// y ← A y for the stored (not yet factorised) symmetric matrix.
-  void multiply(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> y) const {
-    y.setZero();
-    for (Index i = 0; i < n_; ++i) {
-      y[i] += at(i, i) * x[i];
-      for (Index j = std::max<Index>(0, i - p_); j < i; ++j) {
-        y[i] += at(i, j) * x[j];
-        y[j] += at(i, j) * x[i];
-      }
-    }
-  }
 
   /// Factorises in place; false (the matrix not positive definite) with `failed_at` the pivot's index.
   [[nodiscard]] bool factorize(Index& failed_at) {
