@@ -410,9 +410,10 @@ TEST_CASE("pin values as coordinates in a basis give the solve with the expanded
   in_basis.precompute();
   // A direct backend solves Q_FF Z = Q_FP B in precompute (one column per coordinate); an iterative one does not.
   CHECK(in_basis.report().basis_columns == (be.direct() ? 5 : 0));
+  CHECK(in_basis.precomputes_basis() == be.direct());
   for (std::uint64_t drag = 0; drag < 3; ++drag) {
     const Eigen::MatrixXd u = random_matrix(5, 2, 400 + drag);
-    const Eigen::MatrixXd b = random_matrix(180, 2, 500 + drag % 2);  // b repeats: the cached Q⁻¹ r_b path
+    const Eigen::MatrixXd b = random_matrix(180, 2, 500 + drag / 2);  // b repeats once (500, 500, 501): the cached Q⁻¹ r_b path
     const Eigen::MatrixXd d = random_matrix(2, 2, 600 + drag);
     const Eigen::MatrixXd x = in_basis.solve_in_basis(b, u, d);
     const Eigen::MatrixXd pins = B * u;
@@ -432,10 +433,8 @@ TEST_CASE("pin values as coordinates in a basis give the solve with the expanded
   CHECK(in_basis.report().basis_columns == (be.direct() ? 5 : 0));
   CHECK_THROWS_AS(expanded.solve_in_basis(f.b, Eigen::VectorXd::Zero(5), f.d), std::invalid_argument);
   // A basis whose rows do not match the pinned unknowns is refused.
-  if (be.direct()) {
-    in_basis.set_pin_basis(SparseMatrix(B.topRows(4)));
-    CHECK_THROWS_AS(in_basis.precompute(), std::invalid_argument);
-  }
+  in_basis.set_pin_basis(SparseMatrix(B.topRows(4)));
+  CHECK_THROWS_AS(in_basis.precompute(), std::invalid_argument);
 }
 
 TEST_CASE("a shared analysis is adopted for the same pattern and refused for another") {

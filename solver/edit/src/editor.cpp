@@ -271,7 +271,7 @@ void Editor::precompute() {
     // Step 1's b never changes, so its Q_FF⁻¹ r_b (one back-substitution, which the solver keeps) is part of the
     // precompute: every drag, the first included, then costs step 1 a dense product only (measured at 1,000
     // agents: the first drag's step 1 took 1.1 s, the next ones 0.05 s).
-    (void)s.step1_solver.solve_in_basis(s.step1.b, s.current.handle_coordinates, s.current.d);
+    if (s.step1_solver.precomputes_basis()) (void)s.step1_solver.solve_in_basis(s.step1.b, s.current.handle_coordinates, s.current.d);
   });
   s.report.precompute_seconds = seconds_since(start);
   s.report.analyze_seconds = s.step1_solver.report().analyze_seconds;

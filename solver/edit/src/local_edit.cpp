@@ -81,11 +81,8 @@ struct Region {
   std::uint64_t last_used = 0;
 };
 
-// A basis of more columns than this solves pins as values instead: Z = Q_FF⁻¹ Q_FP B holds #free × #columns
-// doubles and costs #columns back-substitutions to build, worth it for the few coordinates of rigid drags
-// (4 each) and a handful of pins, not for hundreds of individually placed pins (their drag costs one
-// back-substitution more, as before the basis).
-constexpr Index max_basis_columns = 64;
+// A region whose handles have more basis coordinates than the solver precomputes solves pins as values.
+constexpr Index max_basis_columns = linalg::ConstrainedLeastSquares::max_basis_columns;
 
 // Local copy of the features touching R (any of u, v, w inside), in the global order; fills `local_of` for the
 // boundary vertices they reach (appended to `vertices`).

@@ -121,12 +121,6 @@ std::vector<Eigen::Index> ResolvedRequest::pinned_unknowns() const {
   return out;
 }
 
-Eigen::VectorXd ResolvedRequest::pin_values() const {
-  Eigen::VectorXd out(2 * handle_targets.rows());
-  for (Index k = 0; k < handle_targets.rows(); ++k) out.segment<2>(2 * k) = handle_targets.row(k).transpose();
-  return out;
-}
-
 std::string describe(const Request& request, std::size_t k) {
   std::ostringstream out;
   out << "constraints[" << k << "] (";

@@ -30,9 +30,8 @@ struct ResolvedRequest {
   Eigen::VectorXd d;
   std::vector<std::size_t> row_source;
 
-  /// The pinned unknowns (2v, 2v + 1 for each handled vertex) and their values, in the same order.
+  /// The pinned unknowns: 2v, 2v + 1 for each handled vertex, in handle order.
   [[nodiscard]] std::vector<Eigen::Index> pinned_unknowns() const;
-  [[nodiscard]] Eigen::VectorXd pin_values() const;
 };
 
 /// The source frames the request names, to be made samples: pin frames, both frames of each velocity, and every

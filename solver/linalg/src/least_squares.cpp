@@ -228,14 +228,12 @@ struct ConstrainedLeastSquares::State {
   // iterative backend every column is a whole Krylov solve, and a drag is one warm-started solve with its own
   // pin values (measured on the battlefield edit, 8 basis columns per step: 16 CG solves in precompute against
   // 2 per drag).
-  [[nodiscard]] bool basis_solves() const { return has_basis() && backend->is_direct(); }
+  [[nodiscard]] bool basis_solves() const {
+    return has_basis() && backend->is_direct() && pin_basis.cols() <= ConstrainedLeastSquares::max_basis_columns;
+  }
 
   // Z = Q_FF⁻¹ Q_FP B, one block of back-substitutions.
   void solve_basis() {
-    if (pin_basis.rows() != static_cast<Index>(pinned.size())) {
-      throw std::invalid_argument("ConstrainedLeastSquares: the pin basis has " + std::to_string(pin_basis.rows()) +
-                                  " rows for " + std::to_string(pinned.size()) + " pinned unknowns");
-    }
     const Eigen::MatrixXd rhs = Eigen::MatrixXd(SparseMatrix(SparseMatrix(Q_PF.transpose()) * pin_basis));
     Z = free_count() > 0 ? solve_free(rhs) : Eigen::MatrixXd(0, pin_basis.cols());
     report.basis_columns += static_cast<int>(pin_basis.cols());
@@ -556,8 +554,12 @@ void ConstrainedLeastSquares::analyze() {
 }
 
 void ConstrainedLeastSquares::precompute() {
-  analyze();
   State& s = *state_;
+  if (s.has_basis() && s.pin_basis.rows() != static_cast<Index>(s.pinned.size())) {
+    throw std::invalid_argument("ConstrainedLeastSquares: the pin basis has " + std::to_string(s.pin_basis.rows()) +
+                                " rows for " + std::to_string(s.pinned.size()) + " pinned unknowns");
+  }
+  analyze();
   if (s.factor_stale) {
     const auto start = Clock::now();
     if (s.blocks_stale) s.assemble_blocks(false);
@@ -581,6 +583,8 @@ void ConstrainedLeastSquares::precompute() {
     s.report.basis_seconds = seconds_since(start);
   }
 }
+
+bool ConstrainedLeastSquares::precomputes_basis() const { return state_->basis_solves(); }
 
 Eigen::MatrixXd ConstrainedLeastSquares::solve(const Eigen::Ref<const Eigen::MatrixXd>& b,
                                                const Eigen::Ref<const Eigen::MatrixXd>& pin_values,

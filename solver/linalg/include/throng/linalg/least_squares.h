@@ -92,9 +92,16 @@ class ConstrainedLeastSquares {
   /// whose b is the previous one's costs no back-substitution at all: x_F = Q_FF⁻¹ r_b − Z u (r_b = (AᵀW b)_F,
   /// cached). For rigid drags u is a handful of numbers per drag (cos θ, sin θ, translation): the per-drag cost
   /// of the editor's step 1. With an iterative backend each column of Z would be a whole Krylov solve, so Z is
-  /// not computed: solve_in_basis() is solve() with pin values B u, started from the previous solution.
-  /// An empty B (0 columns) removes the basis. Invalidates Z only.
+  /// not computed: solve_in_basis() is solve() with pin values B u, started from the previous solution. Nor is
+  /// it for more than max_basis_columns coordinates (Z holds #free × #coordinates doubles and costs as many
+  /// back-substitutions: worth it for the few coordinates of rigid drags, not for hundreds of individually
+  /// placed pins, whose drag then costs one back-substitution more). An empty B (0 columns) removes the basis.
+  /// A B whose rows are not the pinned unknowns is std::invalid_argument at precompute(). Invalidates Z only.
   void set_pin_basis(const SparseMatrix& basis);
+  static constexpr Eigen::Index max_basis_columns = 64;
+  /// Whether precompute() solves for Z (a basis of at most max_basis_columns columns on a direct backend), so
+  /// that solve_in_basis() with an unchanged b costs no back-substitution.
+  [[nodiscard]] bool precomputes_basis() const;
 
   /// Replaces the general constraints. Invalidates the Schur complement only.
   void set_constraints(const SparseMatrix& C);
