@@ -5,10 +5,9 @@
 //
 //   build/<dir>/bench/formation/bench_formation --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
-// The cost is dense linear algebra through OpenBLAS (eigen-decompositions, products): check that OpenBLAS uses
-// the machine's kernels (OPENBLAS_VERBOSE=2 prints "Core: ..."). OpenBLAS 0.3.21 does not know this machine's
-// CPU model ("Intel(R) Xeon(R) Processor", AVX-512) and falls back to its generic Prescott kernels, about 3 times
-// slower here; OPENBLAS_CORETYPE=Cooperlake (or SkylakeX) selects the right ones.
+// The cost is dense linear algebra through OpenBLAS (eigen-decompositions, products). OpenBLAS 0.3.21 does not
+// know this machine's CPU model and would fall back to its generic kernels, about 3 times slower here; the
+// formation code switches it to the right ones itself (throng/core/blas_kernels.h).
 #include <throng/formation/formation.h>
 #include <throng/io/config.h>
 #include <throng/io/formation_job.h>

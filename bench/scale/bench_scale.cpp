@@ -180,12 +180,10 @@ void local_drag(benchmark::State& state, int agents, int frames, int halo, int v
   }
 }
 
-void global_drag(benchmark::State& state, int agents, int frames, const std::string& backend, int threads,
-                 const std::string& petsc_options) {
+void global_drag(benchmark::State& state, int agents, int frames, const std::string& backend, int threads) {
   const ThreadLimit limit(static_cast<std::size_t>(threads));
   Scene s = scene(agents, frames, backend);
   s.options.solver.blas_threads = threads;
-  s.options.solver.petsc_options = petsc_options;
   try {
     const double before = heap_mb();
     edit::Editor editor(s.crowd, s.options, s.request);
@@ -248,43 +246,23 @@ void register_benchmarks(const Sweep& sweep) {
   }
   for (int agents : sweep.agents) {
     if (agents <= sweep.eigen_max) {
-      add("size/global_drag/eigen/agents:" + std::to_string(agents), 3, global_drag, agents, 300, "eigen", 1, "");
+      add("size/global_drag/eigen/agents:" + std::to_string(agents), 3, global_drag, agents, 300, "eigen", 1);
     }
-    if (petsc) add("size/global_drag/petsc/agents:" + std::to_string(agents), 2, global_drag, agents, 300, "petsc", 1, "");
+    if (petsc) add("size/global_drag/petsc/agents:" + std::to_string(agents), 2, global_drag, agents, 300, "petsc", 1);
   }
   // Frames: 1,000 agents × F frames.
   for (int frames : sweep.frames) {
     add("frames/local_drag/halo:1/frames:" + std::to_string(frames), 10, local_drag, 1000, frames, 1, sweep.vertices_per_part, 1);
-    if (petsc) add("frames/global_drag/petsc/frames:" + std::to_string(frames), 2, global_drag, 1000, frames, "petsc", 1, "");
+    if (petsc) add("frames/global_drag/petsc/frames:" + std::to_string(frames), 2, global_drag, 1000, frames, "petsc", 1);
   }
   // Strong (fixed size) and weak (size per worker fixed) scaling over threads; ranks by mpiexec -np.
   for (int threads : sweep.threads) {
     const std::string t = std::to_string(threads);
     add("strong/local_drag/halo:1/threads:" + t, 10, local_drag, sweep.strong_agents, 300, 1, sweep.vertices_per_part, threads);
     if (petsc) {
-      add("strong/global_drag/petsc/threads:" + t, 2, global_drag, sweep.strong_agents, 300, "petsc", threads, "");
+      add("strong/global_drag/petsc/threads:" + t, 2, global_drag, sweep.strong_agents, 300, "petsc", threads);
       const int weak = sweep.weak_agents * threads * mpi::size();
-      add("weak/global_drag/petsc/threads:" + t, 2, global_drag, weak, 300, "petsc", threads, "");
-    }
-  }
-}
-
-// Bandwidth context for every case, from the stream_triad row of this run or an earlier one in the table.
-void add_bandwidth_notes(std::vector<scale::Row>& rows) {
-  double gbps = 0;
-  for (const auto& r : rows) {
-    if (r.name == "stream_triad") {
-      if (auto it = r.values.find("bandwidth_GBps"); it != r.values.end()) gbps = it->second;
-    }
-  }
-  if (gbps <= 0) return;
-  for (auto& r : rows) {
-    if (r.seconds <= 0) continue;
-    if (auto it = r.values.find("memory_max_MB"); it != r.values.end() && it->second > 0) {
-      r.values["stream_sweeps"] = r.seconds * gbps / (it->second / 1000.0);
-    }
-    if (auto it = r.values.find("drag_bytes_GB"); it != r.values.end() && it->second > 0) {
-      r.values["bandwidth_fraction"] = it->second / r.seconds / gbps;
+      add("weak/global_drag/petsc/threads:" + t, 2, global_drag, weak, 300, "petsc", threads);
     }
   }
 }
@@ -348,7 +326,6 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&recorder);
   benchmark::Shutdown();
   if (writer && !recorder.rows.empty()) {
-    add_bandwidth_notes(recorder.rows);
     scale::write_results(out_dir, recorder.rows);
     std::fprintf(stderr, "bench_scale: wrote %s/scale.csv, scale.json, scale-<study>.svg\n", out_dir.c_str());
   }

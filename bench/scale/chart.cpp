@@ -121,6 +121,27 @@ void panel(std::ostringstream& svg, double left, double top, double w, double h,
   }
 }
 
+// Bandwidth context for every case (stream_sweeps, bandwidth_fraction), from the table's stream_triad row: this
+// run's or an earlier one's.
+void add_bandwidth_notes(std::vector<Row>& rows) {
+  double gbps = 0;
+  for (const auto& r : rows) {
+    if (r.name == "stream_triad") {
+      if (auto it = r.values.find("bandwidth_GBps"); it != r.values.end()) gbps = it->second;
+    }
+  }
+  if (gbps <= 0) return;
+  for (auto& r : rows) {
+    if (r.seconds <= 0) continue;
+    if (auto it = r.values.find("memory_max_MB"); it != r.values.end() && it->second > 0) {
+      r.values["stream_sweeps"] = r.seconds * gbps / (it->second / 1000.0);
+    }
+    if (auto it = r.values.find("drag_bytes_GB"); it != r.values.end() && it->second > 0) {
+      r.values["bandwidth_fraction"] = it->second / r.seconds / gbps;
+    }
+  }
+}
+
 }  // namespace
 
 void write_results(const fs::path& dir, std::vector<Row> rows) {
@@ -144,6 +165,7 @@ void write_results(const fs::path& dir, std::vector<Row> rows) {
       }
     }
   }
+  add_bandwidth_notes(rows);
   std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
     return std::tie(a.name, a.ranks) < std::tie(b.name, b.ranks);
   });

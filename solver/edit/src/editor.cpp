@@ -13,6 +13,7 @@
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <utility>
 
 namespace throng::edit {
 namespace {
@@ -71,7 +72,7 @@ struct Editor::State {
   CrowdMotion source;  // the clip's frames and agents at the source rate
   MotionGraph graph;
   FeatureSet features;
-  Objective step1, step2;
+  Objective step1, step2;  // their A handed to the solvers (empty here); weights and b kept
   linalg::ConstrainedLeastSquares step1_solver, step2_solver;
   ResolvedRequest current;
   bool has_request = false;
@@ -233,12 +234,12 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
   const auto vertices = static_cast<Index>(s.graph.vertex_count());
   const Eigen::MatrixXd modes = similarity_modes(s.graph.clip.positions);
   s.step1 = step1_objective(s.features, vertices, options.alpha, options.beta);
-  s.step1_solver.set_objective(s.step1.A, s.step1.weights);
+  s.step1_solver.set_objective(std::move(s.step1.A), s.step1.weights);  // the solver's copy is the only one
   s.step1_solver.set_near_null_space(modes, 2);
   s.step1_solver.set_complex_pairs(true);  // every feature row is complex-linear in (x, y) pairs
   if (options.scale_compensation) {
     s.step2 = step2_objective(s.features, vertices, options.alpha_prime, options.beta_prime);
-    s.step2_solver.set_objective(s.step2.A, s.step2.weights);
+    s.step2_solver.set_objective(std::move(s.step2.A), s.step2.weights);
     s.step2_solver.set_near_null_space(modes, 2);
     s.step2_solver.set_complex_pairs(true);
     s.step2_solver.share_analysis(&s.step1_solver);

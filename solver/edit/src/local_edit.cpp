@@ -25,28 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Calls f(row, column, value) for every stored entry of C, in column order. A request's C spans every unknown
-// of the graph (millions of columns) but holds a few rows: this costs O(#entries · log #columns), not
-// O(#columns), per drag.
-template <class F>
-void for_each_entry(const linalg::SparseMatrix& C, F&& f) {
-  if (C.nonZeros() == 0) return;
-  if (!C.isCompressed()) {
-    for (Index k = 0; k < C.outerSize(); ++k) {
-      for (linalg::SparseMatrix::InnerIterator it(C, k); it; ++it) f(it.row(), it.col(), it.value());
-    }
-    return;
-  }
-  const int* outer = C.outerIndexPtr();
-  const int* inner = C.innerIndexPtr();
-  const double* value = C.valuePtr();
-  const Index end = outer[C.outerSize()];
-  for (Index e = outer[0]; e < end;) {
-    const Index k = std::upper_bound(outer, outer + C.outerSize() + 1, static_cast<int>(e)) - outer - 1;  // e's column
-    for (; e < outer[k + 1]; ++e) f(static_cast<Index>(inner[e]), k, value[e]);
-  }
-}
-
 // One factorised region: the subproblem over R's unknowns with its boundary and handles pinned.
 //   vertices  local → graph vertex: R (increasing), then the boundary B (increasing)
 //   pinned    local vertices pinned, in set_pinned order: the handles inside R (increasing), then B
@@ -172,10 +150,12 @@ struct LocalEditor::State {
   // The constraint rows on the region's local unknowns (local_of filled for the region).
   linalg::SparseMatrix local_constraints(const linalg::SparseMatrix& C, Index local_vertices) const {
     std::vector<Eigen::Triplet<double>> entries;
-    for_each_entry(C, [&](Index row, Index col, double value) {
-      const int local = local_of[static_cast<std::size_t>(col / 2)];
-      entries.emplace_back(row, 2 * static_cast<Index>(local) + col % 2, value);
-    });
+    for (Index k = 0; k < C.outerSize(); ++k) {
+      for (linalg::SparseMatrix::InnerIterator it(C, k); it; ++it) {
+        const int local = local_of[static_cast<std::size_t>(it.col() / 2)];
+        entries.emplace_back(it.row(), 2 * static_cast<Index>(local) + it.col() % 2, it.value());
+      }
+    }
     linalg::SparseMatrix out(C.rows(), 2 * local_vertices);
     out.setFromTriplets(entries.begin(), entries.end());
     out.makeCompressed();
@@ -419,7 +399,11 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Reques
     const Index v = resolved.handle_vertices[k];
     if (resolved.handle_targets.row(static_cast<Index>(k)) != s.current.row(v)) seeds.push_back(s.partition.part_of[static_cast<std::size_t>(v)]);
   }
-  for_each_entry(resolved.C, [&](Index, Index col, double) { seeds.push_back(s.partition.part_of[static_cast<std::size_t>(col / 2)]); });
+  for (Index k = 0; k < resolved.C.outerSize(); ++k) {
+    for (linalg::SparseMatrix::InnerIterator it(resolved.C, k); it; ++it) {
+      seeds.push_back(s.partition.part_of[static_cast<std::size_t>(it.col() / 2)]);
+    }
+  }
   std::sort(seeds.begin(), seeds.end());
   seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
   const auto start = Clock::now();
