@@ -244,11 +244,18 @@ TEST_CASE("an output folder that does not exist fails before any work, and a sin
   // These clips do not fit (20 and 18 agents: exit 3 after reading them); the folder is checked first: exit 4.
   CHECK(run("stitch " + s(dir / "early.h5") + " " + s(dir / "fewer.h5") + " -o " + missing, &out) == 4);
   CHECK_THAT(out, Contains("no_such_folder"));
-  CHECK(run("split " + s(input) + " --at-frame 10 -o " + s(dir / "a.h5") + " --other " + missing, &out) == 4);
-  CHECK(run("merge " + s(input) + " " + s(input) + " -o " + missing, &out) == 4);
-  CHECK(run("transform " + s(input) + " --rotate 10 -o " + missing, &out) == 4);
-  CHECK(run("timewarp " + s(input) + " --reference " + s(input) + " -o " + missing, &out) == 4);
+  // The other clip commands on an input that is not HDF5 (exit 3 once read): exit 4, so the folder came first.
+  const auto bad = dir / "not_hdf5.h5";
+  { std::ofstream(bad) << "not an HDF5 file\n"; }
+  const std::string b = s(bad);
+  CHECK(run("split " + b + " --at-frame 10 -o " + s(dir / "a.h5") + " --other " + missing, &out) == 4);
+  CHECK(run("merge " + b + " " + b + " -o " + missing, &out) == 4);
+  CHECK(run("transform " + b + " --rotate 10 -o " + missing, &out) == 4);
+  CHECK(run("timewarp " + b + " --reference " + b + " -o " + missing, &out) == 4);
+  CHECK(run("merge " + b + " " + b + " -o " + s(dir / "m.h5"), &out) == 3);  // what reading it first gives
   CHECK_FALSE(std::filesystem::exists(dir / "a.h5"));
+  CHECK_FALSE(std::filesystem::exists(dir / "m.h5"));
+  std::filesystem::remove(bad);
 
   // One agent (no formation neighbour) with the temporal and spatiotemporal weights 0: nothing ties its free
   // samples to the pinned ends, the system is singular (exit 5) and nothing is written.
