@@ -12,6 +12,7 @@
 // multigrid hierarchy) on each rank, as memory_MB (this rank), memory_max_MB and memory_sum_MB (over the ranks):
 // run petsc cases under mpiexec -np 1 and -np 2 to compare memory per rank.
 #include "../../tests/graph/synthetic_crowd.h"
+#include "../common/heap.h"
 
 #include <throng/core/errors.h>
 #include <throng/edit/edit.h>
@@ -20,7 +21,6 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
-#include <malloc.h>
 #include <memory>
 #include <string>
 
@@ -54,12 +54,7 @@ Scene scene(int agents, const std::string& backend) {
   return s;
 }
 
-// Heap in use, MB (glibc mallinfo2: arenas and mmapped blocks). CHOLMOD, PETSc, hypre and Eigen allocate through
-// malloc; a difference of two readings is what the code between them holds.
-double heap_mb() {
-  const struct mallinfo2 m = mallinfo2();
-  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
-}
+using bench::heap_mb;  // CHOLMOD, PETSc, hypre and Eigen allocate through malloc
 
 void memory_counters(benchmark::State& state, double megabytes) {
   state.counters["memory_MB"] = megabytes;

@@ -41,6 +41,7 @@
 // Ranks: mpiexec -np 2 bench_scale --benchmark_filter='strong|weak' ... (fixed iteration counts keep the
 // collective PETSc solves in step; rank 0 prints and writes).
 #include "../../tests/graph/synthetic_crowd.h"
+#include "../common/heap.h"
 #include "chart.h"
 
 #include <throng/core/errors.h>
@@ -63,7 +64,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-#include <malloc.h>
 
 namespace {
 
@@ -94,14 +94,7 @@ std::vector<int> int_list(const char* text) {
   return out;
 }
 
-// Heap memory in use, MB (glibc's mallinfo2: arena and mmapped blocks in use). A difference of two readings is
-// what the code between them holds, whatever earlier cases freed (a resident-set difference is not: freed pages
-// stay resident and are reused). CHOLMOD, PETSc and Eigen allocate through malloc; OpenBLAS's small work
-// buffers do not and are not counted.
-double heap_mb() {
-  const struct mallinfo2 m = mallinfo2();
-  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
-}
+using bench::heap_mb;
 
 struct Scene {
   CrowdMotion crowd;

@@ -9,7 +9,7 @@
 // {1, 30} a 3-s window per side (61,000 vertices); {1, 49} 99,000 vertices; {8, 0} the whole clips sampled
 // every 8th frame (77,000 vertices: the budget is lifted for it). Step 1 and step 2 are factorised
 // one after the other (one factor in memory at a time). Counters: peak_heap_MB, the largest heap in use during
-// the stitch above what was in use before (bench/stitch/heap_peak.h); max_rss_MB, the process's peak resident
+// the stitch above what was in use before (bench/common/heap.h); max_rss_MB, the process's peak resident
 // set so far (monotone: read it for the largest case run); fit_rounds, the assignments of the boundary fit
 // (throng/stitch/boundary.h), whose time is matching_s.
 //
@@ -18,7 +18,7 @@
 
 #include <throng/stitch/stitch.h>
 
-#include "heap_peak.h"
+#include "../common/heap.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,7 +1,7 @@
 // The time warp at scale (issue 4): 1,000 agents × 600 frames whose paths bulge sideways (so they walk faster
 // there), warped back towards the original speeds: the whole method, the warp alone (closed form and smoothed)
 // and the spline resampling alone. Counter peak_heap_MB: the largest heap in use during the warp above what was
-// in use before (bench/stitch/heap_peak.h; the output crowd is part of it).
+// in use before (bench/common/heap.h; the output crowd is part of it).
 //
 // Run:   bench_timewarp --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <throng/timewarp/resample.h>
@@ -9,7 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "../stitch/heap_peak.h"
+#include "../common/heap.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,6 @@
-// Peak heap memory of the code run while a HeapPeak lives, for the stitch and time-warp benchmarks.
+// Heap memory for the benchmarks: in use now (heap_mb: a difference of two readings is what the code between
+// them holds, whatever earlier cases freed; a resident-set difference is not, freed pages stay resident), the
+// process's peak resident set, and the peak heap of the code run while a HeapPeak lives.
 //
 // glibc's mallinfo2 gives the heap in use (arena and mmapped blocks) but no peak, and a factorisation frees its
 // factor before the stitch returns; so a thread reads it every 2 ms and keeps the largest reading. The counter
@@ -17,7 +19,7 @@
 
 namespace throng::bench {
 
-/// Heap memory in use, MB.
+/// Heap memory in use, MB (glibc's mallinfo2: arena and mmapped blocks in use).
 inline double heap_mb() {
   const struct mallinfo2 m = mallinfo2();
   return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
