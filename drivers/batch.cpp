@@ -1,15 +1,12 @@
 #include "batch.h"
+#include "rank_outcome.h"
 
 #include <throng/core/errors.h>
 #include <throng/linalg/mpi.h>
 
-#include <yaml-cpp/exceptions.h>
-
 #include <algorithm>
 #include <chrono>
-#include <new>
 #include <span>
-#include <stdexcept>
 
 namespace throng::cli {
 namespace {
@@ -33,28 +30,6 @@ JobOutcome from_json(const nlohmann::json& j) {
   o.seconds = j.at("seconds").get<double>();
   o.report = j.at("report");
   return o;
-}
-
-std::vector<std::byte> bytes_of(const std::string& text) {
-  std::vector<std::byte> out(text.size());
-  std::transform(text.begin(), text.end(), out.begin(), [](char c) { return static_cast<std::byte>(c); });
-  return out;
-}
-
-std::string text_of(const std::vector<std::byte>& bytes) {
-  std::string out(bytes.size(), '\0');
-  std::transform(bytes.begin(), bytes.end(), out.begin(), [](std::byte b) { return static_cast<char>(b); });
-  return out;
-}
-
-[[noreturn]] void throw_as(int exit_code, const std::string& message) {
-  switch (static_cast<ExitCode>(exit_code)) {
-    case ExitCode::usage: throw ConfigError(message);
-    case ExitCode::invalid_input: throw InputError(message);
-    case ExitCode::io: throw IoError(message);
-    case ExitCode::not_converged: throw NumericalError(message);
-    default: throw std::runtime_error(message);  // internal (70)
-  }
 }
 
 }  // namespace
@@ -102,18 +77,10 @@ std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::
                                    1.0 / static_cast<double>(mine.size()), label);
       o.report = run_job(jobs[k]);
       o.ok = true;
-    } catch (const Error& e) {
-      o.exit_code = static_cast<int>(e.exit_code());
-      o.error = e.what();
-    } catch (const YAML::Exception& e) {
-      o.exit_code = static_cast<int>(ExitCode::usage);
-      o.error = std::string("in a job file: ") + e.what();
-    } catch (const std::bad_alloc&) {
-      o.exit_code = static_cast<int>(ExitCode::internal);
-      o.error = "out of memory";
-    } catch (const std::exception& e) {
-      o.exit_code = static_cast<int>(ExitCode::internal);
-      o.error = std::string("internal error: ") + e.what();
+    } catch (...) {
+      const ErrorOutcome e = outcome_of(std::current_exception());
+      o.exit_code = static_cast<int>(e.code);
+      o.error = e.message;
     }
     o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (o.ok) {
@@ -163,7 +130,7 @@ void finish_batch(const std::vector<JobOutcome>& outcomes, Context& context) {
   r["results"] = std::move(list);
   if (mpi::rank() == 0) context.print(r);
   if (first_failed) {
-    throw_as(first_failed->exit_code, std::to_string(failed) + " of " + std::to_string(outcomes.size()) +
+    throw_as(static_cast<ExitCode>(first_failed->exit_code), std::to_string(failed) + " of " + std::to_string(outcomes.size()) +
                                           " jobs failed (the others finished):" + failures);
   }
 }

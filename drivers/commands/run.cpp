@@ -37,6 +37,7 @@
 // (an info step's report) goes to stderr, so stdout holds the summary alone (one JSON document with --json);
 // the summary and the final "N of M jobs failed" come from rank 0 only.
 #include "../batch.h"
+#include "../rank_outcome.h"
 #include "factories.h"
 
 #include <throng/core/errors.h>
@@ -95,34 +96,20 @@ std::optional<StepResult> on_rank_0(Step&& step) {
   std::optional<StepResult> result;
   std::exception_ptr failure;
   std::vector<std::byte> outcome;  // empty: done; else the exit code, then the message
-  auto record = [&](ExitCode code, const char* message) {
-    failure = std::current_exception();
-    outcome.push_back(static_cast<std::byte>(static_cast<int>(code)));
-    for (const char* c = message; *c != '\0'; ++c) outcome.push_back(static_cast<std::byte>(*c));
-  };
   if (mpi::rank() == 0) {
     try {
       result = step();
-    } catch (const Error& e) {
-      record(e.exit_code(), e.what());
-    } catch (const YAML::Exception& e) {
-      record(ExitCode::usage, e.what());
-    } catch (const std::exception& e) {
-      record(ExitCode::internal, e.what());
+    } catch (...) {
+      failure = std::current_exception();
+      const ErrorOutcome e = outcome_of(failure);
+      outcome = bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
     }
   }
   mpi::broadcast(outcome, 0);
   if (failure) std::rethrow_exception(failure);
   if (outcome.empty()) return result;
-  std::string message;
-  for (std::size_t k = 1; k < outcome.size(); ++k) message.push_back(static_cast<char>(outcome[k]));
-  switch (static_cast<ExitCode>(static_cast<int>(outcome[0]))) {
-    case ExitCode::usage: throw ConfigError(message);
-    case ExitCode::invalid_input: throw InputError(message);
-    case ExitCode::io: throw IoError(message);
-    case ExitCode::not_converged: throw NumericalError(message);
-    default: throw std::runtime_error(message);
-  }
+  const std::string text = text_of(outcome);
+  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text[0])), text.substr(1));
 }
 
 // The outputs a job's steps name inline (crowd files and pictures), as absolute normal paths.

@@ -1,0 +1,32 @@
+// How the program passes an error between MPI ranks: an exception as its exit code and message, and back as an
+// exception of the same kind on another rank; strings as the bytes mpi::broadcast and mpi::gather carry.
+// Used by batches (drivers/batch.h: each job's outcome) and by pipeline steps run on rank 0 alone (run.cpp).
+#pragma once
+
+#include <throng/core/errors.h>
+
+#include <cstddef>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace throng::cli {
+
+/// What an error means to the program: the exit code it leaves with (ARCHITECTURE.md) and the message.
+struct ErrorOutcome {
+  ExitCode code = ExitCode::internal;
+  std::string message;
+};
+
+/// The outcome of a caught exception (non-null): an Error its own code and message, a YAML error usage (2)
+/// "in a job file: ...", out of memory and anything else internal (70).
+[[nodiscard]] ErrorOutcome outcome_of(const std::exception_ptr& error);
+
+/// Throws the error type of `code` (ConfigError, InputError, IoError, NumericalError; std::runtime_error for
+/// internal) with `message`, so that a rank leaves with the same exit code as the rank that failed.
+[[noreturn]] void throw_as(ExitCode code, const std::string& message);
+
+[[nodiscard]] std::vector<std::byte> bytes_of(const std::string& text);
+[[nodiscard]] std::string text_of(const std::vector<std::byte>& bytes);
+
+}  // namespace throng::cli
