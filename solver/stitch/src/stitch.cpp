@@ -69,7 +69,7 @@ void validate(const Options& o) {
 }
 
 double blend_weight(double distance, double window) noexcept {
-  if (!(window > 0) || distance >= window) return 0.0;
+  if (!(window > 0) || !detail::inside_window(distance, window)) return 0.0;
   const double x = std::max(distance, 0.0) / window;
   return 1.0 - 3.0 * x * x + 2.0 * x * x * x;
 }
@@ -178,8 +178,8 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
   // input wherever f_a = 0.
   auto intermediate = [&](std::size_t F, std::size_t j) -> Eigen::Vector2d {
     if (F == J) return naive(J, j) + joint_shift[j];
-    if (F < J) return naive(F, j) + detail::window_weight(times[J] - times[F], window.first_s) * joint_shift[j];
-    return naive(F, j) - detail::window_weight(times[F] - times[J], window.second_s) * joint_shift[j];
+    if (F < J) return naive(F, j) + blend_weight(times[J] - times[F], window.first_s) * joint_shift[j];
+    return naive(F, j) - blend_weight(times[F] - times[J], window.second_s) * joint_shift[j];
   };
   const std::size_t lo = window.first_solved, hi = window.last_solved;  // the pinned window edges
   const std::size_t L = hi - lo + 1;

@@ -49,10 +49,6 @@ std::size_t edge(const std::vector<double>& times, std::size_t J, double window,
 
 bool inside_window(double distance, double window) noexcept { return distance < window * (1 - rounding); }
 
-double window_weight(double distance, double window) noexcept {
-  return inside_window(distance, window) ? blend_weight(distance, window) : 0.0;
-}
-
 SampledWindow sample_window(const std::vector<double>& times, std::size_t J, std::size_t step, double requested_s,
                             std::size_t agents, std::size_t max_vertices) {
   assert(J >= 1 && J + 1 < times.size() && step >= 1);

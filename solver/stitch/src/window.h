@@ -11,9 +11,6 @@ namespace throng::stitch::detail {
 /// relative 1e-9 absorbs the rounding of frame times (0.1·30 − 0.1·24 is not exactly 0.6).
 [[nodiscard]] bool inside_window(double distance, double window) noexcept;
 
-/// f_a of Eq. 11 at `distance` seconds from the joint: blend_weight inside the window, exactly 0 outside.
-[[nodiscard]] double window_weight(double distance, double window) noexcept;
-
 struct SampledWindow {
   double first_s = 0, second_s = 0;              ///< window per side (seconds), each ≤ its clip's duration
   std::size_t first_frames = 0, second_frames = 0;  ///< frames from the joint to each window edge

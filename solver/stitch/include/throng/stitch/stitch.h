@@ -94,7 +94,8 @@ struct Options {
 /// Checks option values; ConfigError naming the option.
 void validate(const Options& options);
 
-/// Eq. 11's blending function: 1 − 3 (d/W)² + 2 (d/W)³ for 0 ≤ d < W, 0 for d ≥ W.
+/// Eq. 11's blending function: 1 − 3 (d/W)² + 2 (d/W)³ for 0 ≤ d < W, 0 for d ≥ W (and for d within a relative
+/// 1e-9 of W, where frame times round: a frame on the window's edge is outside it).
 [[nodiscard]] double blend_weight(double distance, double window) noexcept;
 
 struct Report {
