@@ -215,25 +215,22 @@ void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
                        const sketch::SimulationResult& result) {
   const h5::Group sketch = throng_parameters.create_group("sketch");
   const h5::Group strokes = sketch.create_group("strokes");
-  const Stroke& main = job.drawing.strokes.front();
-  std::vector<double> timed;
-  for (std::size_t k = 0; k < main.points.size(); ++k) {
-    timed.insert(timed.end(), {main.points[k].x(), main.points[k].y(), main.times[k]});
-  }
-  strokes.write("main", timed, {main.points.size(), 3});
-  for (std::size_t i = 1; i < job.drawing.strokes.size(); ++i) {
-    // As given: [x, y, t] when the line was drawn with times (the method does not use them), else [x, y].
-    const Stroke& aux = job.drawing.strokes[i];
-    const std::string name = "auxiliary_" + std::to_string(i - 1);
-    if (aux.times.empty()) {
-      strokes.write(name, flatten(aux.points), {aux.points.size(), 2});
-    } else {
-      std::vector<double> rows;
-      for (std::size_t k = 0; k < aux.points.size(); ++k) {
-        rows.insert(rows.end(), {aux.points[k].x(), aux.points[k].y(), aux.times[k]});
-      }
-      strokes.write(name, rows, {aux.points.size(), 3});
+  // As given: [x, y, t] when the line has times (the main line always has), else [x, y] (an auxiliary line
+  // drawn without them; the method does not use an auxiliary line's times).
+  const auto write_stroke = [&](const std::string& name, const Stroke& stroke) {
+    if (stroke.times.empty()) {
+      strokes.write(name, flatten(stroke.points), {stroke.points.size(), 2});
+      return;
     }
+    std::vector<double> rows;
+    for (std::size_t k = 0; k < stroke.points.size(); ++k) {
+      rows.insert(rows.end(), {stroke.points[k].x(), stroke.points[k].y(), stroke.times[k]});
+    }
+    strokes.write(name, rows, {stroke.points.size(), 3});
+  };
+  write_stroke("main", job.drawing.strokes.front());
+  for (std::size_t i = 1; i < job.drawing.strokes.size(); ++i) {
+    write_stroke("auxiliary_" + std::to_string(i - 1), job.drawing.strokes[i]);
   }
 
   const sketch::Course& c = result.course;
