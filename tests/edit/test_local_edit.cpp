@@ -369,3 +369,23 @@ TEST_CASE("parts by size: vertices / vertices_per_part parts, and a size out of 
   o.local.vertices_per_part = -3;
   CHECK_THROWS_AS(LocalEditor(crowd, o, request), ConfigError);
 }
+
+TEST_CASE("a cached region takes new constraint values and rows in place and gives what a fresh editor gives") {
+  const CrowdMotion crowd = scene();
+  Request request = corner_drag({0.5, 0});
+  request.constraints.push_back(Velocity{.agent = 100, .frame = 20, .velocity = {0.5, 0.2}});
+  LocalEditor local(crowd, local_options(12, 1), request);
+  (void)local.deform(request);
+  const int factorizations = local.report().factorizations;
+  REQUIRE(local.report().regions_built == 1);
+  // New values of the same rows, then one more row on a neighbour of the dragged corner.
+  request.constraints[0] = Velocity{.agent = 100, .frame = 20, .velocity = {0.8, -0.1}};
+  (void)local.deform(request);
+  request.constraints.push_back(Velocity{.agent = 101, .frame = 20, .velocity = {0.4, 0.3}});
+  const Positions got = local.deform(request);
+  CHECK(local.report().regions_built == 1);
+  CHECK(local.report().factorizations == factorizations);
+  CHECK(local.report().max_constraint_residual < 1e-8);
+  LocalEditor fresh(crowd, local_options(12, 1), request);
+  CHECK((fresh.deform(request) - got).cwiseAbs().maxCoeff() < rounding);
+}
