@@ -94,11 +94,7 @@ BENCHMARK(matching_1000)->Unit(benchmark::kMillisecond)->UseRealTime();
 // The town job as a user runs it: the `throng` program in a scratch folder, the job's paths made absolute.
 void town_job(benchmark::State& state) {
   const std::filesystem::path source = THRONG_SOURCE_DIR;
-  const std::filesystem::path data = source.parent_path() / "shared" / "data" / "real";
-  if (!std::filesystem::exists(data / "eth")) {
-    state.SkipWithError("../shared/data/real/eth not found: the town job needs it");
-    return;
-  }
+  const std::filesystem::path data = source / "data" / "real";
   std::ifstream in(source / "configs" / "run-town.yaml");
   std::stringstream text;
   text << in.rdbuf();
@@ -107,7 +103,7 @@ void town_job(benchmark::State& state) {
     for (std::size_t at = job.find(from); at != std::string::npos; at = job.find(from, at + to.size())) job.replace(at, from.size(), to);
   };
   replace_all("configs/", (source / "configs").string() + "/");
-  replace_all("../shared/data/real/", data.string() + "/");
+  replace_all("data/real/", data.string() + "/");
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / "throng_bench_town";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "town.yaml") << job;

@@ -3,7 +3,7 @@
 //
 //   steps:
 //     - step: import                      # the command; its keys follow, as in its job file
-//       dataset: ../shared/data/real/eth
+//       dataset: data/real/eth
 //       name: eth                         # optional: later steps can take this result by name
 //     - step: sketch
 //       job: configs/sketch-paper.yaml    # optional: a job file for the step's keys (inline keys override it)

@@ -199,10 +199,6 @@ nlohmann::json report_of(const std::string& out) {
 
 TEST_CASE("collide: imported real data with its walls, at the defaults") {
   const auto data = test::real_data_dir();
-  if (data.empty()) {
-    WARN("../shared/data/real not found: real-data collide test skipped");
-    return;
-  }
   const auto dir = test::scratch_dir("cli_collide_real");
   // hotel: agents tracked inside the pillars at their first and last frames (audit: the old loop dragged one
   // 255 m away in 10,000 iterations); eth and zara have walls, univ is the densest. Each takes well under 1 s.

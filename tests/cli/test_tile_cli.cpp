@@ -77,10 +77,6 @@ TEST_CASE("every tile config, shrunk, gives a tiling that check-tiling passes") 
   };
   for (const auto& [name, shrink] : configs) {
     INFO(name);
-    if (name == "tile-real.yaml" && test::real_data_dir().empty()) {
-      WARN("no ../shared/data/real: tile-real.yaml skipped");
-      continue;
-    }
     const auto out = dir / (name + ".h5");
     std::string report;
     REQUIRE(run("--quiet --json tile " + config(name) + " " + shrink + " -o " + out.string(), &report) == 0);
@@ -100,7 +96,7 @@ TEST_CASE("every tile config, shrunk, gives a tiling that check-tiling passes") 
         named = named || std::filesystem::weakly_canonical(in) == dataset;
       }
       CHECK(named);
-      CHECK_THAT(crowd.provenance.options, !Contains("../../shared"));
+      CHECK_THAT(crowd.provenance.options, !Contains("../data/real"));
     }
   }
 }

@@ -1,4 +1,4 @@
-// The importer on the recorded datasets in ../shared/data/real (skipped, with a message, where absent).
+// The importer on the recorded datasets shipped in data/real.
 #include "test_paths.h"
 
 #include <throng/core/errors.h>
@@ -28,10 +28,6 @@ std::vector<Sample> obsmat_rows(const std::filesystem::path& p) {
 
 TEST_CASE("hotel: every annotated row lands at its frame, walls and pillars become obstacles, groups species") {
   const auto data = test::real_data_dir();
-  if (data.empty()) {
-    WARN("../shared/data/real not found: real-data import test skipped");
-    return;
-  }
   const CrowdFile f = import_real_dataset(data / "hotel", {});
   const CrowdMotion& m = f.motion;
   const auto rows = obsmat_rows(data / "hotel" / "obsmat.txt");
@@ -82,10 +78,6 @@ TEST_CASE("hotel: every annotated row lands at its frame, walls and pillars beco
 
 TEST_CASE("eth uses 15 fps, students03 has no map, each dataset imports") {
   const auto data = test::real_data_dir();
-  if (data.empty()) {
-    WARN("../shared/data/real not found: real-data import test skipped");
-    return;
-  }
   const CrowdFile eth = import_real_dataset(data / "eth", {});
   CHECK(eth.motion.times[1] - eth.motion.times[0] == Catch::Detail::Approx(0.4));  // 6 frames at 15 fps
   CHECK(eth.motion.frame_count() == 1448);

@@ -10,10 +10,7 @@ std::filesystem::path source_dir() { return THRONG_SOURCE_DIR; }
 std::filesystem::path build_dir() { return THRONG_BINARY_DIR; }
 std::filesystem::path throng_program() { return build_dir() / "drivers" / "throng"; }
 
-std::filesystem::path real_data_dir() {
-  const auto dir = source_dir().parent_path() / "shared" / "data" / "real";
-  return std::filesystem::is_directory(dir) ? dir : std::filesystem::path{};
-}
+std::filesystem::path real_data_dir() { return source_dir() / "data" / "real"; }
 
 std::filesystem::path scratch_dir(const std::string& name) {
   const auto dir = build_dir() / "test-scratch" / name;

@@ -1,4 +1,4 @@
-// Where tests find the project's files, the shared real data, a scratch folder, Python and mpiexec.
+// Where tests find the project's files, the recorded crowds, a scratch folder, Python and mpiexec.
 #pragma once
 
 #include <filesystem>
@@ -12,7 +12,7 @@ std::filesystem::path source_dir();
 std::filesystem::path build_dir();
 /// The `throng` program built alongside the tests.
 std::filesystem::path throng_program();
-/// ../shared/data/real beside the project root; empty if absent (tests then SKIP with a message).
+/// The recorded crowds shipped with the project (data/real: ETH/BIWI and UCY, with their credit).
 std::filesystem::path real_data_dir();
 /// A fresh, empty folder for this test case under the build folder (removed and re-created on each call).
 std::filesystem::path scratch_dir(const std::string& name);

@@ -190,10 +190,6 @@ TEST_CASE("patches from two synthetic walkers: a pair episode tied at its closes
 
 TEST_CASE("patches from the real zara01 data tile a box perfectly") {
   const auto dir = test::real_data_dir();
-  if (dir.empty()) {
-    WARN("no ../shared/data/real: skipped");
-    return;
-  }
   const CrowdFile data = import_real_dataset(dir / "zara01", RealDatasetOptions{});
   RealPatchOptions o;
   o.max_pair_patches = 6;

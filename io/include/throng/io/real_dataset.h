@@ -1,4 +1,4 @@
-// Importer for the recorded pedestrian datasets in ../shared/data/real (ETH/BIWI and UCY "Crowds by Example",
+// Importer for the recorded pedestrian datasets in data/real (ETH/BIWI and UCY "Crowds by Example",
 // as collected and converted to metres by the OpenTraj project):
 //   obsmat.txt   rows "frame id x z y vx vz vy" (metres, m/s; the z columns are 0: the ground plane is x–y)
 //   map.xml      OpenTraj's obstacles: <Line x1 y1 x2 y2> wall segments, <Circle x y radius> pillars (optional)

@@ -12,7 +12,7 @@
 //     builtin_options: {sample_rate: 10, radius: 0.25, walk_speed: 1.3, walk_duration: 2, wait_duration: 2,
 //                       preference_per_character: 1}
 //     real:                          # optional: patches built from recorded trajectories (throng/tiling/construct.h)
-//       dataset: ../shared/data/real/zara01   # a dataset folder (relative: to the job file, else the working
+//       dataset: data/real/zara01   # a dataset folder (relative: to the job file, else the working
 //                                    # dir); the effective job and the provenance name the resolved folder
 //       sample_rate: 10              # and every RealPatchOptions field: max_gap, radius, standing_speed,
 //       near: 1.5                    # clean_acceleration, min_contact, margin, reaction_min, synchronicity_min,

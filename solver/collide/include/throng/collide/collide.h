@@ -1,5 +1,5 @@
 // Collision repair of a crowd animation (Kwon, Lee, Lee, Takahashi, SIGGRAPH 2008, §6.1;
-// ../shared/design/METHODS.md §1.3): push trajectories apart, and out of obstacles, by small linear deformations
+// docs/METHODS.md §1.3): push trajectories apart, and out of obstacles, by small linear deformations
 // of the colliding trajectories until every clearance holds.
 //
 // Iteration. Find every contact (broad_phase.h: exact, every pair, every obstacle, one contact per colliding frame

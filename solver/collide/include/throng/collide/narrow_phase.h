@@ -1,4 +1,4 @@
-// Narrow phase of collision repair (paper §6.1; ../shared/design/METHODS.md §1.3): exact tests on one frame
+// Narrow phase of collision repair (paper §6.1; docs/METHODS.md §1.3): exact tests on one frame
 // interval of piecewise-linear trajectories.
 //
 // Between two frames every agent moves on a straight line at constant speed, so over the interval

@@ -1,4 +1,4 @@
-// Group motion editing (Kwon, Lee, Lee, Takahashi, SIGGRAPH 2008, §3–4; ../shared/design/METHODS.md §1): deform
+// Group motion editing (Kwon, Lee, Lee, Takahashi, SIGGRAPH 2008, §3–4; docs/METHODS.md §1): deform
 // a clip of a crowd by pinning and dragging agents while keeping its formations and trajectories.
 //
 // Method. The clip is sampled and turned into the space-time motion graph (throng/graph). Step 1 minimises

@@ -1,6 +1,6 @@
 // Local edits: solve only the part of the space-time graph an edit reaches, leave the rest untouched (the
 // paper's Discussion: "take only small part of the crowd animation into consideration, while leaving the
-// remaining parts intact"; ../shared/design/METHODS.md §1.4).
+// remaining parts intact"; docs/METHODS.md §1.4).
 //
 // Method. The motion graph is split once into LocalOptions::parts parts by METIS (throng/graph/partition.h,
 // over formation and motion edges), or with parts = LocalOptions::by_size into parts of about

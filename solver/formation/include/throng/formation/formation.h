@@ -1,6 +1,6 @@
 // Spectral formation control: keyframe formations of a group interpolated through rotating Laplacian eigenbases
 // (Takahashi, Yoshida, Kwon, Lee, Lee & Shin, "Spectral-Based Group Formation Control", Eurographics 2009; read
-// with ../shared/design/METHODS.md §2).
+// with docs/METHODS.md §2).
 //
 // The method, per group of n individuals and keyframes k = 0..K−1:
 //   1. Graph of each keyframe (§3.1): Delaunay edges (3-D Delaunay for 3-D formations), weight 1/distance, then

@@ -1,4 +1,4 @@
-// The boundary fit of a stitch (Kwon et al. 2008 §5 steps 1–2; ../shared/design/METHODS.md §1.1): which agent of
+// The boundary fit of a stitch (Kwon et al. 2008 §5 steps 1–2; docs/METHODS.md §1.1): which agent of
 // clip G′ continues which agent of clip G, and the rigid motion that puts G′'s first frame onto G's last.
 //
 // Step 1 alone (match_boundary) is the exact minimum-total-distance assignment between the two frames

@@ -1,4 +1,4 @@
-// Stitching two group motions in time (Kwon et al. 2008, §5; ../shared/design/METHODS.md §1.1): clip G (t frames)
+// Stitching two group motions in time (Kwon et al. 2008, §5; docs/METHODS.md §1.1): clip G (t frames)
 // then clip G′ (t′ frames) with the same number of agents become one clip of t + t′ − 1 frames whose formation
 // morphs smoothly across the joint while each trajectory keeps its detail.
 //

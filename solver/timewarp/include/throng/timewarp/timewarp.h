@@ -1,4 +1,4 @@
-// Time warping (Kwon et al. 2008, §6.2, Eq. 12; ../shared/design/METHODS.md §1.2): a deformed crowd whose paths
+// Time warping (Kwon et al. 2008, §6.2, Eq. 12; docs/METHODS.md §1.2): a deformed crowd whose paths
 // got longer or shorter walks faster or slower than the original; one time warp shared by every agent brings the
 // speeds back as close to the original's as it can, then every agent is resampled at the output frame rate
 // through non-uniform cubic interpolating splines (throng/timewarp/spline.h, not-a-knot ends).
