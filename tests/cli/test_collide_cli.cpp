@@ -258,11 +258,7 @@ TEST_CASE("collide: 1 and 2 threads give the same bits, with obstacles") {
 }
 
 TEST_CASE("collide: 1 and 2 MPI ranks give the same bits, and only rank 0 writes and reports", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("no mpiexec: skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_collide_ranks");
   const auto input = write_crowd(dir, collide::scenes::narrow_opening(19, 2.4, 300));
   REQUIRE(run("--quiet collide " + input.string() + " -o " + (dir / "one.h5").string()) == 0);

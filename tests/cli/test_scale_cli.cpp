@@ -215,11 +215,7 @@ TEST_CASE("a batch naming a missing job or an empty folder fails before running 
 }
 
 TEST_CASE("a batch over 2 MPI ranks spreads the jobs round-robin, with either backend", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("mpiexec not found: MPI batch test skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_scale_batch_mpi");
   const auto input = write_input(dir);
   std::string jobs;
@@ -289,11 +285,7 @@ TEST_CASE("a batch keeps stdout for its summary, refuses two jobs writing one fi
 }
 
 TEST_CASE("a batch over 2 MPI ranks with a job failing on rank 1 reports it once, from rank 0", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("mpiexec not found: MPI batch test skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_scale_batch_mpi_failure");
   const auto input = write_input(dir);
   std::string jobs;
@@ -327,11 +319,7 @@ TEST_CASE("a batch over 2 MPI ranks with a job failing on rank 1 reports it once
 }
 
 TEST_CASE("one pipeline under mpiexec -np 2 prints its report and writes its file once", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("mpiexec not found: MPI pipeline test skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_scale_pipeline_mpi");
   const auto input = write_input(dir);
   const auto job = write_text(dir / "job.yaml", "steps:\n  - step: edit\n    input: " + input.string() + "\n    output: " +
@@ -348,11 +336,7 @@ TEST_CASE("one pipeline under mpiexec -np 2 prints its report and writes its fil
 }
 
 TEST_CASE("one pipeline under mpiexec -np 2 draws its plot once, from rank 0, and a failing plot stops both ranks", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("mpiexec not found: MPI plot test skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_scale_pipeline_plot_mpi");
   const auto input = write_input(dir);
   const auto picture = dir / "edited.svg";

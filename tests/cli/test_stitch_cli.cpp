@@ -267,11 +267,7 @@ TEST_CASE("an output folder that does not exist fails before any work, and a sin
 }
 
 TEST_CASE("stitch under mpiexec with the petsc backend matches eigen on 1 and 2 ranks, one file and one report", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("mpiexec not found: MPI stitch test skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_stitch_mpi");
   const auto input = write_arc(dir);
   REQUIRE(run("--quiet split " + s(input) + " --at-frame 30 -o " + s(dir / "a.h5") + " --other " + s(dir / "b.h5")) == 0);

@@ -113,11 +113,7 @@ TEST_CASE("the same seed gives the same tiling file for 1 and 2 threads and the 
 }
 
 TEST_CASE("the same seed gives the same tiling file for 1 and 2 MPI ranks", "[mpi]") {
-  const std::string mpiexec = test::mpiexec();
-  if (mpiexec.empty()) {
-    WARN("no mpiexec: skipped");
-    return;
-  }
+  const std::string mpiexec = test::required_mpiexec();
   const auto dir = test::scratch_dir("cli_tile_ranks");
   write_file(dir / "job.yaml", std::string(small_job) + "chains: 3\n");
   const std::string job = (dir / "job.yaml").string();

@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 #include <sys/wait.h>
 
 namespace throng::test {
@@ -25,6 +27,18 @@ std::string system_python() {
 }
 
 std::string mpiexec() { return THRONG_MPIEXEC; }
+
+void skip(const std::string& reason) {
+  std::fprintf(stderr, "SKIPPED: %s\n", reason.c_str());
+  std::fflush(stderr);
+  std::_Exit(77);
+}
+
+std::string required_mpiexec() {
+  const std::string m = mpiexec();
+  if (m.empty()) throw std::runtime_error("mpiexec not found: scripts/install-deps installs it (openmpi-bin)");
+  return m;
+}
 
 int run_command(const std::string& command, std::string* output) {
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");

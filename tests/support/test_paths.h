@@ -21,6 +21,14 @@ std::string system_python();
 /// mpiexec; empty if not found.
 std::string mpiexec();
 
+/// Ends this test case as SKIPPED: prints `reason` and exits with code 77, which CTest reports as "Skipped"
+/// (SKIP_RETURN_CODE, tests/CMakeLists.txt), never as passed. Only for what a build legitimately lacks (a build
+/// configured without PETSc); what the README's test command installs (data, mpiexec, Python) must be there.
+[[noreturn]] void skip(const std::string& reason);
+
+/// mpiexec, which the test command installs (openmpi-bin): fails the test when it is missing.
+std::string required_mpiexec();
+
 /// Runs a shell command; returns its exit status (0..255) and fills `output` with stdout+stderr if given.
 int run_command(const std::string& command, std::string* output = nullptr);
 
