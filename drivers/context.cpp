@@ -54,7 +54,7 @@ void print_human(const Report& value, int indent) {
 
 }  // namespace
 
-Context::Context(int argc, char** argv) {
+Context::Context(int argc, char** argv, Process& process) : process_(process) {
   for (int i = 0; i < argc; ++i) command_line_ += (i ? " " : "") + shell_quote(argv[i]);
 }
 
@@ -89,7 +89,9 @@ Progress& Context::progress() {
 }
 
 void Context::limit_threads() {
-  if (!threads_) threads_ = std::make_unique<ThreadLimit>(global.threads);
+  if (threads_limited_) return;
+  process_.limit_threads(global.threads);
+  threads_limited_ = true;
 }
 
 ConfigNode Context::load_job(const std::filesystem::path& path) const {
@@ -98,19 +100,23 @@ ConfigNode Context::load_job(const std::filesystem::path& path) const {
   return job.with_overrides(global.set);
 }
 
+ConfigNode Context::job(const std::filesystem::path& path, const std::vector<Override>& flags, const std::string& name) const {
+  std::vector<Override> overrides = flags;
+  for (const std::string& s : global.set) overrides.push_back(parse_set(s));
+  const ConfigNode file = path.empty() ? ConfigNode(YAML::Node(YAML::NodeType::Map), name) : ConfigNode::load_file(path);
+  if (overrides.empty()) return file;  // keeps the file as it is (a null job stays null)
+  return file.with_overrides(overrides);
+}
+
 Provenance Context::provenance(const YAML::Node& effective_options, const std::vector<std::string>& inputs,
-                               const std::vector<const Provenance*>& sources) const {
+                               const std::vector<std::string>& credits) const {
   Provenance p;
   p.program_version = THRONG_VERSION;
   p.command_line = command_line_;
   p.options = to_yaml_text(effective_options);
   p.seed = global.seed;
   p.inputs = inputs;
-  for (const Provenance* s : sources) {
-    for (const auto& c : s->credits) {
-      if (std::find(p.credits.begin(), p.credits.end(), c) == p.credits.end()) p.credits.push_back(c);
-    }
-  }
+  p.add_credits(credits);
   return p;
 }
 

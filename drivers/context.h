@@ -2,12 +2,13 @@
 // make every method command behave the same (--print-config, --set, provenance in the output).
 #pragma once
 
-#include <throng/core/parallel.h>
+#include "report_json.h"
+
 #include <throng/core/progress.h>
 #include <throng/io/config.h>
 #include <throng/io/crowd_file.h>
+#include <throng/process/process.h>
 
-#include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace spdlog {
@@ -33,15 +35,19 @@ struct GlobalOptions {
   std::vector<std::string> set;       ///< key.path=value overrides applied to the job
 };
 
-/// A report on stdout: key/value pairs, printed as "key: value" lines or as JSON (--json).
-using Report = nlohmann::ordered_json;
-
 class Context {
  public:
-  Context(int argc, char** argv);
+  /// `process` is the program's (main.cpp), set up before anything runs.
+  Context(int argc, char** argv, Process& process);
   ~Context();
 
   GlobalOptions global;
+
+  [[nodiscard]] Process& process() noexcept { return process_; }
+  /// The ranks the methods spread their work over (Process::communicator).
+  [[nodiscard]] const Communicator& communicator() const { return process_.communicator(); }
+  /// True on the rank that writes outputs and prints reports (rank 0; the only one without mpiexec).
+  [[nodiscard]] bool writer() const { return process_.world_rank() == 0; }
 
   /// The full command line, shell-quoted, for provenance.
   [[nodiscard]] const std::string& command_line() const noexcept { return command_line_; }
@@ -62,15 +68,37 @@ class Context {
     std::unique_ptr<View> view_;
     Progress* previous_;
   };
-  /// Applies --threads for the rest of the run (call once, before solving).
+  /// Applies --threads for the rest of the run (before solving; later calls keep the first limit).
   void limit_threads();
 
   /// Loads a job file and applies the --set overrides.
   [[nodiscard]] ConfigNode load_job(const std::filesystem::path& path) const;
-  /// Provenance for an output: version, command line, seed, the effective options, inputs; credits are merged
-  /// from the inputs' provenance.
+  /// A command's job: the job file (none when `path` is empty: an empty job named `name`), the flags the user
+  /// gave over its keys, then --set. Messages about a value name the file's line, the flag or the --set argument.
+  [[nodiscard]] ConfigNode job(const std::filesystem::path& path, const std::vector<Override>& flags,
+                               const std::string& name) const;
+  /// The options of a command that takes no job file (import, plot, export, check-tiling): its flags and --set,
+  /// read through `describe` with every key accounted for. Returns the effective job (for --print-config and the
+  /// provenance): `arguments`, the files the command line names (an empty one is left out), then the options.
+  template <class Options>
+  [[nodiscard]] YAML::Node options(const std::vector<Override>& flags, const std::string& name,
+                                   void (*describe)(OptionBinder&, Options&), Options& values,
+                                   const std::vector<std::pair<std::string, std::string>>& arguments) const {
+    const ConfigNode node = job({}, flags, name);
+    read_options(node, describe, values);
+    node.finish();
+    YAML::Node effective(YAML::NodeType::Map);
+    for (const auto& [key, value] : arguments) {
+      if (!value.empty()) effective[key] = value;
+    }
+    write_options(effective, describe, values);
+    return effective;
+  }
+  /// Provenance for an output: version, command line, seed, the effective options, inputs, and `credits`
+  /// (of every input the output derives from, each once).
   [[nodiscard]] Provenance provenance(const YAML::Node& effective_options, const std::vector<std::string>& inputs,
-                                      const std::vector<const Provenance*>& sources = {}) const;
+                                      const std::vector<std::string>& credits = {}) const;
+
   /// If --print-config was given: prints `effective_options` as YAML on stdout and returns true (the command
   /// then stops without running).
   bool print_config_if_asked(const YAML::Node& effective_options) const;
@@ -83,11 +111,12 @@ class Context {
 
  private:
   spdlog::logger& log() const;
+  Process& process_;
   mutable std::shared_ptr<spdlog::logger> logger_;
   std::string command_line_;
   std::unique_ptr<Progress> progress_;
   Progress* scoped_progress_ = nullptr;
-  std::unique_ptr<ThreadLimit> threads_;
+  bool threads_limited_ = false;
 };
 
 }  // namespace throng::cli

@@ -4,13 +4,15 @@
 #include "command.h"
 #include "context.h"
 
-#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
+#include <throng/process/process.h>
 
 #include <CLI/CLI.hpp>
 #include <yaml-cpp/exceptions.h>
 
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <new>
@@ -21,13 +23,21 @@
 
 namespace {
 
-// A CLI11 check for a whole number ≥ 0 written in digits: CLI11 would read "-1" into an unsigned flag as
-// 2^64 − 1, and its NonNegativeNumber message prints the largest double in full.
+// A CLI11 check for a whole number ≥ 0 written in digits that fits 64 bits: CLI11 would read "-1" into an
+// unsigned flag as 2^64 − 1 (and 2^64 as 2^64 − 1), and its NonNegativeNumber message prints the largest double
+// in full.
 CLI::Validator whole_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        if (!text.empty() && text.find_first_not_of("0123456789") == std::string::npos) return {};
-        return "expected a whole number ≥ 0, found '" + text + "'";
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+          return "expected a whole number ≥ 0, found '" + text + "'";
+        }
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc{} || end != text.data() + text.size()) {
+          return "expected a whole number in [0, 2^64 − 1], found '" + text + "'";
+        }
+        return {};
       },
       "N ≥ 0");
 }
@@ -37,9 +47,9 @@ CLI::Validator whole_number() {
 int main(int argc, char** argv) {
   using namespace throng;
   install_interrupt_cleanup();
-  (void)choose_blas_kernels();  // before any BLAS call, so no result depends on which method ran first
+  Process process;  // BLAS kernels chosen before any BLAS call, so no result depends on which method ran first
 
-  cli::Context context(argc, argv);
+  cli::Context context(argc, argv, process);
   CLI::App app{"throng " THRONG_VERSION " — solver backend for crowd animation.\n"
                "Reads crowd datasets (HDF5, H5MD layout), runs the methods, writes HDF5 that other tools read.",
                "throng"};

@@ -36,16 +36,16 @@ ConfigScene config_scene(const std::string& path) {
     const ConfigNode keys = step_keys(step, path);
     CrowdFile made;
     if (kind == "sketch") {
-      SketchJob sketch_job = read_sketch_job(keys);
+      auto sketch_job = read_job<sketch::Job>(keys);
       sketch_job.options.seed = 1;
       made.motion = sketch::simulate(sketch_job.drawing, sketch_job.scene, sketch_job.options, quiet).motion;
       made.scene = sketch_job.scene;
     } else if (kind == "merge") {
-      std::vector<const CrowdFile*> inputs;
+      Crowds inputs;
       for (const YAML::Node& name : step["inputs"]) inputs.push_back(&named.at(name.as<std::string>()));
-      made = merge_crowds(inputs, read_merge_job(keys)).crowd;
+      static_cast<Crowd&>(made) = stitch::run(inputs, read_job<stitch::MergeJob>(keys), quiet, Communicator::single()).crowd;
     } else if (kind == "collide") {
-      const CollideJob collide_job = read_collide_job(keys);
+      const auto collide_job = read_job<collide::Job>(keys);
       ConfigScene out;
       out.crowd = last.motion;
       out.obstacles = last.scene.obstacles;

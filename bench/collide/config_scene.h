@@ -1,7 +1,7 @@
 // The crowd a shipped collide config hands its collide step (configs/collide-*.yaml), made in memory the way
-// `throng run` makes it: the config's sketch and merge steps run through the same job readers and library
-// calls as the commands (drivers/commands/sketch.cpp, merge.cpp; seed 1, the program's default), and the
-// collide step's keys read by read_collide_job. So the benchmarks time the user-facing scenes.
+// `throng run` makes it: the config's sketch and merge steps run through the same job readers and library calls as
+// the commands (sketch::simulate, stitch::run; seed 1, the program's default), and the collide step's keys read by
+// collide::read_job. So the benchmarks time the user-facing scenes.
 #pragma once
 
 #include <throng/collide/collide.h>

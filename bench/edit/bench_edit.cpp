@@ -17,6 +17,7 @@
 #include <throng/core/errors.h>
 #include <throng/edit/edit.h>
 #include <throng/linalg/mpi.h>
+#include <throng/process/process.h>
 
 #include <benchmark/benchmark.h>
 
@@ -155,8 +156,9 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const throng::Process process;  // the BLAS kernels the program uses
   // Under mpiexec every rank runs the same sequence (the PETSc solves are collective); rank 0 reports.
-  if (throng::mpi::launched_by_mpiexec() && throng::mpi::rank() != 0) (void)std::freopen("/dev/null", "w", stdout);
+  if (process.world_rank() != 0) (void)std::freopen("/dev/null", "w", stdout);
   register_benchmarks();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

@@ -6,8 +6,8 @@
 //   build/<dir>/bench/formation/bench_formation --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
 // The cost is dense linear algebra through OpenBLAS (eigen-decompositions, products). OpenBLAS 0.3.21 does not
-// know this machine's CPU model and would fall back to its generic kernels, about 3 times slower here; the
-// formation code switches it to the right ones itself (throng/core/blas_kernels.h).
+// know this machine's CPU model and would fall back to its generic kernels, about 3 times slower here; every
+// benchmark program's main sets up the process (throng/process/process.h), which switches to the right ones.
 #include <throng/formation/formation.h>
 #include <throng/io/config.h>
 #include <throng/io/formation_job.h>
@@ -54,7 +54,7 @@ BENCHMARK(BM_FlatTransition)
 // three levels, a circle, a star, a runner and five circles, 991 frames; the job is read once, outside the loop.
 void BM_ShippedHierarchy1260(benchmark::State& state) {
   const throng::FormationJob job =
-      throng::read_formation_job(throng::ConfigNode::load_file(THRONG_CONFIG_DIR "/formation-hierarchy-1260.yaml"));
+      throng::read_job<throng::FormationJob>(throng::ConfigNode::load_file(THRONG_CONFIG_DIR "/formation-hierarchy-1260.yaml"));
   const throng::ThreadLimit threads(static_cast<std::size_t>(state.range(0)));
   run(state, job.problem, job.options);
 }

@@ -49,6 +49,7 @@
 #include <throng/edit/edit.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/mpi.h>
+#include <throng/process/process.h>
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
@@ -284,8 +285,9 @@ class Recorder final : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const throng::Process process;  // the BLAS kernels the program uses
   // Under mpiexec every rank runs the same sequence (the PETSc solves are collective); rank 0 reports.
-  const bool writer = !throng::mpi::launched_by_mpiexec() || throng::mpi::rank() == 0;
+  const bool writer = process.world_rank() == 0;
   if (!writer) (void)std::freopen("/dev/null", "w", stdout);
   std::string out_dir = "bench-scale";
   Sweep sweep;

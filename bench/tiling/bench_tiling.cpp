@@ -20,16 +20,17 @@ using namespace throng;
 namespace {
 
 TilingJob load(const std::string& name) {
-  return read_tiling_job(ConfigNode::load_file(std::string(THRONG_SOURCE_DIR) + "/configs/" + name));
+  return read_job<TilingJob>(ConfigNode::load_file(std::string(THRONG_SOURCE_DIR) + "/configs/" + name));
 }
 
 // One tiling per iteration of `job` with `threads` threads.
 void run(benchmark::State& state, TilingJob job, std::size_t threads) {
   const ThreadLimit limit(threads);
   NoProgress quiet;
+  const tiling::Prepared prepared = tiling::prepare(job, nullptr);  // the configs timed here use built-in patches
   tiling::TilingResult r;
   for (auto _ : state) {
-    r = tiling::tile(job.library, job.environment, job.keyframes, job.options, quiet);
+    r = tiling::tile(prepared.library, job.environment, prepared.keyframes, job.options, quiet);
     benchmark::DoNotOptimize(r.tiling.instances.data());
   }
   const tiling::ChainReport& best = r.report.chains[r.report.best_chain];

@@ -1,12 +1,20 @@
 // throng export CROWD.h5 --csv -o OUT.csv: tables for tools that read them (time,id,x,y,z).
 #include "factories.h"
 
-#include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/csv.h>
 
 namespace throng::cli {
 namespace {
+
+/// The one key of an export: its format.
+struct ExportJob {
+  std::string format = "csv";
+};
+
+void describe(OptionBinder& b, ExportJob& job) {
+  b.choice({.key = "format", .help = "csv: time,id,x,y,z, one row per present agent per frame"}, job.format, {"csv"});
+}
 
 class ExportCommand final : public Command {
  public:
@@ -20,9 +28,8 @@ class ExportCommand final : public Command {
   }
 
   void run(Context& context) override {
-    YAML::Node effective;
-    effective["crowd"] = input_.string();
-    effective["format"] = "csv";
+    ExportJob job;
+    const YAML::Node effective = context.options({}, name(), describe, job, {{"crowd", input_.string()}});
     if (context.print_config_if_asked(effective)) return;
     check_distinct(input_, output_);
     const CrowdFile file = read_crowd_file(input_);
@@ -39,9 +46,8 @@ class ExportCommand final : public Command {
 
   std::optional<StepResult> run_step(const ConfigNode& step, const std::vector<const CrowdFile*>& inputs, Context& context) override {
     const std::filesystem::path output = step.at("output").as_string();
-    std::string format = "csv";
-    OptionReader reader(step);
-    reader.choice("format", format, {"csv"});
+    ExportJob job;
+    read_options(step, describe, job);
     step.finish();
     if (inputs.size() != 1) step.fail("export takes one crowd, found " + std::to_string(inputs.size()));
     write_csv(output, inputs.front()->motion);
@@ -51,8 +57,7 @@ class ExportCommand final : public Command {
   bool makes_crowd() const override { return false; }
 
  private:
-  std::filesystem::path input_;
-  std::filesystem::path output_;
+  std::filesystem::path input_, output_;
   bool csv_ = false;
 };
 

@@ -18,6 +18,10 @@ class InfoCommand final : public Command {
   void setup(CLI::App& app) override { app.add_option("crowd", input_, "Crowd file (.h5)")->required(); }
 
   void run(Context& context) override {
+    context.job({}, {}, name()).finish();  // info has no options: a --set is an unknown key
+    YAML::Node effective(YAML::NodeType::Map);
+    effective["crowd"] = input_.string();
+    if (context.print_config_if_asked(effective)) return;
     const CrowdFile file = read_crowd_file(input_);
     context.print(describe(file, input_.string()));
   }

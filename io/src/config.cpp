@@ -1,7 +1,6 @@
 #include <throng/core/errors.h>
 #include <throng/io/config.h>
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -18,7 +17,29 @@ struct detail::ConfigTracking {
   std::map<std::string, std::shared_ptr<ConfigTracking>> children;
 };
 
+// Where a job's values came from: one file for the whole (or a name), other files for some top-level keys
+// (layered), and single values from the command line (overrides).
+struct detail::ConfigOrigins {
+  struct Origin {
+    std::string name;               // for messages
+    std::filesystem::path folder;   // anchors relative paths ("" : the working directory)
+  };
+  Origin whole;
+  std::map<std::string, Origin> by_key;
+  std::vector<Override> overrides;
+
+  static Origin of(const std::string& source) { return {source, std::filesystem::path(source).parent_path()}; }
+  // The origin of the node at `path`: its top-level key's.
+  const Origin& at(const std::string& path) const {
+    const std::string top = path.substr(0, path.find_first_of(".["));
+    const auto it = by_key.find(top);
+    return it == by_key.end() ? whole : it->second;
+  }
+};
+
 namespace {
+
+using Origins = detail::ConfigOrigins;
 
 std::string mark_text(const YAML::Mark& m) {
   if (m.line < 0) return "";
@@ -27,45 +48,37 @@ std::string mark_text(const YAML::Mark& m) {
 
 std::string join_path(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
 
-std::string shortest(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
 // True when key path `inner` is `outer` or lies below it ("a.b" and "a.b[2]" lie below "a").
 bool at_or_below(const std::string& inner, const std::string& outer) {
   return inner == outer || (inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
                             (inner[outer.size()] == '.' || inner[outer.size()] == '['));
 }
 
-// The override that made the node at `path` (its text), when the node has no place in a file (it came from
-// --set) and `path` is the override's key, below it (a value inside it) or above it (a mapping the override
-// created); nullptr otherwise.
-const std::string* override_at(const std::vector<std::pair<std::string, std::string>>* overrides, const std::string& path,
-                               const YAML::Mark& mark) {
-  if (!overrides || mark.line >= 0) return nullptr;
-  for (const auto& [key, text] : *overrides) {
-    if (at_or_below(path, key) || (!path.empty() && at_or_below(key, path))) return &text;
+// The override that made the node at `path`, when the node has no place in a file (it came from the command
+// line) and `path` is the override's key, below it (a value inside it) or above it (a mapping it created).
+const Override* override_at(const Origins& origins, const std::string& path, const YAML::Mark& mark) {
+  if (mark.line >= 0) return nullptr;
+  for (const Override& o : origins.overrides) {
+    if (at_or_below(path, o.path) || (!path.empty() && at_or_below(o.path, path))) return &o;
   }
   return nullptr;
 }
 
 // Every key, here and below, that nobody asked for: "file:line:col: unknown key 'k' in path (known here: ...)".
-void collect_unknown(const detail::ConfigTracking* t, const std::string& source,
-                     const std::vector<std::pair<std::string, std::string>>* overrides, std::vector<std::string>& problems) {
+void collect_unknown(const detail::ConfigTracking* t, const Origins& origins, std::vector<std::string>& problems) {
   if (t->node.IsMap()) {
     for (auto it = t->node.begin(); it != t->node.end(); ++it) {
       const std::string key = it->first.Scalar();
       if (t->asked.count(key)) continue;
       std::string known;
       for (const auto& k : t->asked) known += (known.empty() ? "" : ", ") + k;
-      const std::string* set = override_at(overrides, join_path(t->path, key), it->first.Mark());
-      problems.push_back((set ? "--set " + *set : source + mark_text(it->first.Mark())) + ": unknown key '" + key + "'" +
-                         (t->path.empty() ? "" : " in " + t->path) + (known.empty() ? "" : " (known here: " + known + ")"));
+      const std::string path = join_path(t->path, key);
+      const Override* set = override_at(origins, path, it->first.Mark());
+      problems.push_back((set ? set->origin : origins.at(path).name + mark_text(it->first.Mark())) + ": unknown key '" + key +
+                         "'" + (t->path.empty() ? "" : " in " + t->path) + (known.empty() ? "" : " (known here: " + known + ")"));
     }
   }
-  for (const auto& [key, child] : t->children) collect_unknown(child.get(), source, overrides, problems);
+  for (const auto& [key, child] : t->children) collect_unknown(child.get(), origins, problems);
 }
 
 // A copy of `node` built in memory: same values, no marks (so nothing points into the override's own text).
@@ -87,11 +100,81 @@ YAML::Node without_marks(const YAML::Node& node) {
     default: return YAML::Node(YAML::NodeType::Null);
   }
 }
+
+// YAML leaves a key written twice in one mapping open and yaml-cpp keeps the first: refuse it, naming both lines.
+void refuse_duplicate_keys(const YAML::Node& node, const std::string& source) {
+  if (node.IsSequence()) {
+    for (const auto& e : node) refuse_duplicate_keys(e, source);
+  } else if (node.IsMap()) {
+    std::map<std::string, YAML::Mark> seen;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string key = it->first.IsScalar() ? it->first.Scalar() : "";
+      if (const auto [first, fresh] = seen.emplace(key, it->first.Mark()); !fresh) {
+        throw ConfigError(source + mark_text(it->first.Mark()) + ": the key '" + key + "' is written twice in one mapping" +
+                          " (first at line " + std::to_string(first->second.line + 1) + ", again at line " +
+                          std::to_string(it->first.Mark().line + 1) + "); keep one");
+      }
+      refuse_duplicate_keys(it->second, source);
+    }
+  }
+}
+
+YAML::Node load_yaml(const std::string& text, const std::string& source) {
+  try {
+    YAML::Node node = YAML::Load(text);
+    refuse_duplicate_keys(node, source);
+    return node;
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source + mark_text(e.mark) + ": not valid YAML (" + e.msg + ")");
+  }
+}
+
+// Writes `value` at `path` into `root` (a mapping), creating the mappings on the way.
+void set_at(YAML::Node& root, const Override& o) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto dot = o.path.find('.', start);
+    parts.push_back(o.path.substr(start, dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  // Walk with fresh handles: yaml-cpp nodes are references, so assignment below writes into `root`.
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    if (parts[i].empty()) throw ConfigError(o.origin + ": empty key in '" + o.path + "'");
+    YAML::Node next = chain.back()[parts[i]];
+    if (next.IsDefined() && !next.IsMap()) throw ConfigError(o.origin + ": '" + parts[i] + "' is not a mapping");
+    chain.push_back(next);
+  }
+  if (parts.back().empty()) throw ConfigError(o.origin + ": empty key in '" + o.path + "'");
+  chain.back()[parts.back()] = without_marks(o.value);
+}
+
 }  // namespace
+
+Override parse_set(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string origin = "--set " + text;
+  if (eq == std::string::npos || eq == 0) throw ConfigError(origin + ": expected key.path=value");
+  Override o{text.substr(0, eq), {}, origin};
+  try {
+    o.value = YAML::Load(text.substr(eq + 1));
+    refuse_duplicate_keys(o.value, origin);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(origin + ": value is not valid YAML (" + e.msg + ")");
+  }
+  return o;
+}
+
+void apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides) {
+  for (const std::string& text : overrides) set_at(root, parse_set(text));
+}
 
 ConfigNode ConfigNode::load_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(path.string() + ": no such job file");
+  if (std::filesystem::is_directory(path, ec)) throw IoError(path.string() + ": is a folder, not a job file");
   std::ifstream in(path);
   if (!in) throw IoError(path.string() + ": cannot be opened for reading");
   std::stringstream text;
@@ -100,24 +183,14 @@ ConfigNode ConfigNode::load_file(const std::filesystem::path& path) {
 }
 
 ConfigNode ConfigNode::parse(const std::string& text, const std::string& source) {
-  try {
-    return ConfigNode(YAML::Load(text), source);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(source + mark_text(e.mark) + ": not valid YAML (" + e.msg + ")");
-  }
+  return ConfigNode(load_yaml(text, source), source);
 }
 
 ConfigNode::ConfigNode(YAML::Node node, std::string source, std::string key_path)
-    : ConfigNode(std::move(node), std::make_shared<const std::string>(std::move(source)), std::move(key_path), nullptr,
-                 nullptr) {}
+    : ConfigNode(std::move(node), std::make_shared<Origins>(Origins{Origins::of(source), {}, {}}), std::move(key_path), nullptr) {}
 
-ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const std::string> source, std::string path, std::shared_ptr<Tracking> tracking,
-                       std::shared_ptr<const Overrides> overrides)
-    : node_(std::move(node)),
-      source_(std::move(source)),
-      path_(std::move(path)),
-      tracking_(std::move(tracking)),
-      overrides_(std::move(overrides)) {
+ConfigNode::ConfigNode(YAML::Node node, std::shared_ptr<const Origins> origins, std::string path, std::shared_ptr<Tracking> tracking)
+    : node_(std::move(node)), origins_(std::move(origins)), path_(std::move(path)), tracking_(std::move(tracking)) {
   if (!tracking_) {
     tracking_ = std::make_shared<detail::ConfigTracking>();
     tracking_->node = node_;
@@ -132,30 +205,58 @@ ConfigNode ConfigNode::child(const YAML::Node& node, const std::string& path) co
     slot->node = node;
     slot->path = path;
   }
-  return ConfigNode(node, source_, path, slot, overrides_);
+  return ConfigNode(node, origins_, path, slot);
 }
 
-ConfigNode ConfigNode::with_overrides(const std::vector<std::string>& overrides) const {
-  if (overrides.empty()) return ConfigNode(node_, source_, path_, nullptr, overrides_);
+ConfigNode ConfigNode::layered(const std::vector<ConfigNode>& layers, const std::string& source) {
+  auto origins = std::make_shared<Origins>(Origins{Origins::of(source), {}, {}});
+  YAML::Node root(YAML::NodeType::Map);
+  for (const ConfigNode& layer : layers) {
+    if (layer.is_null()) continue;
+    if (!layer.is_map()) layer.fail("expected a mapping of keys to values");
+    for (auto it = layer.node_.begin(); it != layer.node_.end(); ++it) {
+      const std::string key = it->first.Scalar();
+      root.remove(key);
+      root.force_insert(it->first, it->second);  // the key's own nodes: messages keep its line
+      origins->by_key[key] = layer.origins_->at(join_path(layer.path_, key));
+    }
+    for (const Override& o : layer.origins_->overrides) origins->overrides.push_back(o);
+  }
+  return ConfigNode(root, std::move(origins), "", nullptr);
+}
+
+ConfigNode ConfigNode::with_overrides(const std::vector<Override>& overrides) const {
+  auto origins = std::make_shared<Origins>(*origins_);
+  if (overrides.empty()) return ConfigNode(node_, std::move(origins), path_, nullptr);
   YAML::Node root = node_;
   if (is_null()) root = YAML::Node(YAML::NodeType::Map);
-  if (!root.IsMap()) fail("a job must hold a mapping of keys to apply --set to");
-  apply_overrides(root, overrides);
-  auto list = std::make_shared<Overrides>(overrides_ ? *overrides_ : Overrides{});
-  for (const auto& o : overrides) list->emplace_back(o.substr(0, o.find('=')), o);
-  return ConfigNode(root, source_, path_, nullptr, std::move(list));
+  if (!root.IsMap()) fail("a job must hold a mapping of keys to apply " + overrides.front().origin + " to");
+  for (const Override& o : overrides) {
+    set_at(root, o);
+    origins->overrides.push_back(o);
+  }
+  return ConfigNode(root, std::move(origins), path_, nullptr);
 }
 
+ConfigNode ConfigNode::with_overrides(const std::vector<std::string>& set) const {
+  std::vector<Override> overrides;
+  for (const std::string& text : set) overrides.push_back(parse_set(text));
+  return with_overrides(overrides);
+}
+
+const Override* ConfigNode::override_here() const { return override_at(*origins_, path_, node_.Mark()); }
+
 std::string ConfigNode::where() const {
-  if (const std::string* set = override_at(overrides_.get(), path_, node_.Mark())) {
-    return "--set " + *set + (path_ == set->substr(0, set->find('=')) ? "" : " (" + path_ + ")");
-  }
-  std::string s = *source_ + mark_text(node_.Mark());
+  if (const Override* o = override_here()) return o->origin + (path_ == o->path ? "" : " (" + path_ + ")");
+  std::string s = origins_->at(path_).name + mark_text(node_.Mark());
   if (!path_.empty()) s += " (" + path_ + ")";
   return s;
 }
 
-const std::string& ConfigNode::source() const noexcept { return *source_; }
+std::string ConfigNode::source() const {
+  if (const Override* o = override_here()) return o->origin;
+  return origins_->at(path_).name;
+}
 
 void ConfigNode::fail(const std::string& message) const { throw ConfigError(where() + ": " + message); }
 
@@ -249,152 +350,29 @@ std::vector<double> ConfigNode::as_doubles(std::initializer_list<std::size_t> si
   return out;
 }
 
+std::vector<std::int64_t> ConfigNode::as_ints() const {
+  if (!node_.IsSequence()) fail("expected a list of integers");
+  std::vector<std::int64_t> out;
+  for (const auto& e : elements()) out.push_back(e.as_int());
+  return out;
+}
+
+std::filesystem::path ConfigNode::as_path() const {
+  const std::string text = as_string();
+  if (text.empty()) fail("expected a path, found an empty text");
+  const std::filesystem::path p(text);
+  if (p.is_absolute() || override_here()) return p;
+  const std::filesystem::path& folder = origins_->at(path_).folder;
+  return folder.empty() ? p : (folder / p).lexically_normal();
+}
+
 void ConfigNode::finish() const {
   std::vector<std::string> problems;
-  collect_unknown(tracking_.get(), *source_, overrides_.get(), problems);
+  collect_unknown(tracking_.get(), *origins_, problems);
   if (problems.empty()) return;
   std::string message = problems.front();
   for (std::size_t i = 1; i < problems.size(); ++i) message += "\n" + problems[i];
   throw ConfigError(message);
-}
-
-void apply_overrides(YAML::Node& root, const std::vector<std::string>& overrides) {
-  for (const auto& o : overrides) {
-    const auto eq = o.find('=');
-    if (eq == std::string::npos || eq == 0) throw ConfigError("--set " + o + ": expected key.path=value");
-    const std::string path = o.substr(0, eq);
-    YAML::Node value;
-    try {
-      value = YAML::Load(o.substr(eq + 1));
-    } catch (const YAML::Exception& e) {
-      throw ConfigError("--set " + o + ": value is not valid YAML (" + e.msg + ")");
-    }
-    // Walk with fresh handles: yaml-cpp nodes are references, so assignment below writes into `root`.
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-      const auto dot = path.find('.', start);
-      parts.push_back(path.substr(start, dot - start));
-      if (dot == std::string::npos) break;
-      start = dot + 1;
-    }
-    std::vector<YAML::Node> chain{root};
-    for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-      if (parts[i].empty()) throw ConfigError("--set " + o + ": empty key in '" + path + "'");
-      YAML::Node next = chain.back()[parts[i]];
-      if (next.IsDefined() && !next.IsMap()) throw ConfigError("--set " + o + ": '" + parts[i] + "' is not a mapping");
-      chain.push_back(next);
-    }
-    if (parts.back().empty()) throw ConfigError("--set " + o + ": empty key in '" + path + "'");
-    chain.back()[parts.back()] = without_marks(value);
-  }
-}
-
-bool Range::contains(double v) const {
-  if (!std::isfinite(v)) return false;
-  if (min_open ? !(v > min) : !(v >= min)) return false;
-  if (max_open ? !(v < max) : !(v <= max)) return false;
-  return true;
-}
-
-std::string Range::describe() const {
-  const bool lo = std::isfinite(min), hi = std::isfinite(max);
-  if (lo && hi) return std::string("in ") + (min_open ? "(" : "[") + shortest(min) + ", " + shortest(max) + (max_open ? ")" : "]");
-  if (lo) return std::string(min_open ? "> " : "≥ ") + shortest(min);
-  if (hi) return std::string(max_open ? "< " : "≤ ") + shortest(max);
-  return "a finite number";
-}
-
-void OptionReader::field(const char* key, double& value, Range range) {
-  if (auto n = node_.find(key)) {
-    const double v = n->as_double();
-    if (!range.contains(v)) n->fail("value " + shortest(v) + " is out of range, expected " + range.describe());
-    value = v;
-  }
-}
-
-void OptionReader::field(const char* key, int& value, Range range) {
-  if (auto n = node_.find(key)) {
-    const std::int64_t v = n->as_int();
-    if (!range.contains(static_cast<double>(v)) || v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
-      n->fail("value " + std::to_string(v) + " is out of range, expected " + range.describe());
-    }
-    value = static_cast<int>(v);
-  }
-}
-
-void OptionReader::field(const char* key, std::size_t& value, Range range) {
-  if (auto n = node_.find(key)) {
-    const std::int64_t v = n->as_int();
-    // A count is never negative, whatever the range says.
-    Range counts = range;
-    if (!(counts.min >= 0)) counts.min = 0, counts.min_open = false;
-    if (!counts.contains(static_cast<double>(v))) {
-      n->fail("value " + std::to_string(v) + " is out of range, expected " + counts.describe());
-    }
-    value = static_cast<std::size_t>(v);
-  }
-}
-
-void OptionReader::field(const char* key, bool& value) {
-  if (auto n = node_.find(key)) value = n->as_bool();
-}
-
-void OptionReader::field(const char* key, std::string& value) {
-  if (auto n = node_.find(key)) value = n->as_string();
-}
-
-void OptionReader::field(const char* key, std::vector<double>& value) {
-  if (auto n = node_.find(key)) value = n->as_doubles();
-}
-
-void OptionReader::choice(const char* key, std::string& value, const std::vector<std::string>& allowed) {
-  if (auto n = node_.find(key)) {
-    const std::string v = n->as_string();
-    std::string list;
-    for (const auto& a : allowed) {
-      if (a == v) {
-        value = v;
-        return;
-      }
-      list += (list.empty() ? "" : ", ") + a;
-    }
-    n->fail("unknown value '" + v + "', expected one of: " + list);
-  }
-}
-
-void OptionReader::section(const char* key, const std::function<void(OptionBinder&)>& body) {
-  if (auto n = node_.find(key)) {
-    OptionReader inner(*n);
-    body(inner);
-  }
-}
-
-void OptionWriter::field(const char* key, double& value, Range) { node_[key] = yaml_number(value); }
-void OptionWriter::field(const char* key, int& value, Range) { node_[key] = value; }
-void OptionWriter::field(const char* key, std::size_t& value, Range) { node_[key] = static_cast<std::uint64_t>(value); }
-void OptionWriter::field(const char* key, bool& value) { node_[key] = value; }
-void OptionWriter::field(const char* key, std::string& value) { node_[key] = value; }
-void OptionWriter::field(const char* key, std::vector<double>& value) {
-  YAML::Node list(YAML::NodeType::Sequence);
-  for (double v : value) list.push_back(YAML::Load(shortest(v)));
-  list.SetStyle(YAML::EmitterStyle::Flow);
-  node_[key] = list;
-}
-void OptionWriter::choice(const char* key, std::string& value, const std::vector<std::string>&) { node_[key] = value; }
-void OptionWriter::section(const char* key, const std::function<void(OptionBinder&)>& body) {
-  YAML::Node inner(YAML::NodeType::Map);
-  OptionWriter writer(inner);
-  body(writer);
-  node_[key] = inner;
-}
-
-YAML::Node yaml_number(double value) { return YAML::Load(shortest(value)); }
-
-std::string to_yaml_text(const YAML::Node& node) {
-  YAML::Emitter out;
-  out << node;
-  return std::string(out.c_str()) + "\n";
 }
 
 }  // namespace throng

@@ -69,23 +69,23 @@ Obstacle read_obstacle(const ConfigNode& n) {
   return o;
 }
 
-YAML::Node flow_point(const Eigen::Vector2d& p) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(yaml_number(p.x()));
-  n.push_back(yaml_number(p.y()));
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
+YAML::Node flow_point(const Eigen::Vector2d& p) { return yaml_numbers({p.x(), p.y()}); }
 
 }  // namespace
 
-Scene read_scene(const ConfigNode& job) {
-  Scene scene;
+std::vector<Obstacle> read_obstacles(const ConfigNode& job) {
+  std::vector<Obstacle> out;
   if (auto obstacles = job.find("obstacles")) {
     if (!obstacles->is_null()) {
-      for (const auto& o : obstacles->elements()) scene.obstacles.push_back(read_obstacle(o));
+      for (const auto& o : obstacles->elements()) out.push_back(read_obstacle(o));
     }
   }
+  return out;
+}
+
+Scene read_scene(const ConfigNode& job) {
+  Scene scene;
+  scene.obstacles = read_obstacles(job);
   if (auto r = job.find("region")) {
     Region region;
     region.min = point(r->at("min"));

@@ -1,4 +1,5 @@
 // throng's own flags, exit codes and the data commands (import, export, info, plot), run as a user would.
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -13,9 +14,8 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::string throng_cmd(const std::string& args) { return test::throng_program().string() + " " + args; }
 
-int run(const std::string& args, std::string* out = nullptr) { return test::run_command(throng_cmd(args), out); }
+using test::run;
 
 std::size_t files_in(const std::filesystem::path& dir) {
   return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
@@ -114,6 +114,17 @@ TEST_CASE("an output naming its own input is refused with exit 2 and the input i
   CHECK(run("export " + (dir / "c.h5").string() + " --csv -o " + (dir / "c.h5").string(), &out) == 2);
   CHECK_THAT(out, Contains("is the input file"));
   CHECK(std::filesystem::file_size(dir / "c.h5") == size);
+}
+
+TEST_CASE("a seed is an unsigned 64-bit number: 2^64 - 1 is reported and read back as itself") {
+  const auto dir = test::scratch_dir("cli_seed");
+  const auto h5 = (dir / "zara.h5").string();
+  std::string out;
+  REQUIRE(run("--quiet --seed 18446744073709551615 import " + (test::real_data_dir() / "zara01").string() + " -o " + h5, &out) == 0);
+  REQUIRE(run("--json info " + h5, &out) == 0);
+  CHECK(nlohmann::json::parse(out)["provenance"]["seed"].get<std::uint64_t>() == 18446744073709551615ULL);
+  CHECK(read_crowd_file(h5).provenance.seed == 18446744073709551615ULL);
+  CHECK(run("--seed 18446744073709551616 info " + h5, &out) == 2);  // 2^64 does not fit: refused, never wrapped
 }
 
 TEST_CASE("print-config prints the effective options as YAML and writes nothing") {

@@ -1,4 +1,5 @@
 // throng run: a pipeline of steps passing crowds in memory, writing files only where asked.
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -11,9 +12,7 @@ using namespace throng;
 using Catch::Matchers::Contains;
 
 namespace {
-int run(const std::string& args, std::string* out = nullptr) {
-  return test::run_command(test::throng_program().string() + " " + args, out);
-}
+using test::run;
 }  // namespace
 
 TEST_CASE("a pipeline imports, describes, plots and exports, writing only the files it names") {
@@ -75,4 +74,37 @@ TEST_CASE("unknown steps and unknown keys are config errors with exit 2 and thei
   std::ofstream(dir / "e.yaml") << "steps: []\n";
   CHECK(run("run " + (dir / "e.yaml").string(), &out) == 2);
   CHECK_FALSE(std::filesystem::exists(dir / "p.svg"));
+}
+
+TEST_CASE("the shipped configs that name other files run from any working directory") {
+  // Paths inside a job resolve against the job file's folder, outputs against the working directory: run from a
+  // scratch folder (not the repository, not the build folder), each config writes there and reads what it names
+  // beside itself (configs/*.yaml, data/real).
+  const auto dir = test::scratch_dir("cli_run_anywhere");
+  const auto configs = test::source_dir() / "configs";
+  std::size_t naming_files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(configs)) {
+    std::ifstream in(entry.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const bool names_files = text.find("job:") != std::string::npos || text.find("dataset:") != std::string::npos ||
+                             text.find("file:") != std::string::npos;
+    if (!names_files) continue;
+    ++naming_files;
+    const std::string name = entry.path().filename().string();
+    INFO(name);
+    const bool pipeline = text.find("steps:") != std::string::npos;
+    // Tiling jobs are shrunk (as in test_tile_cli); pipelines run as shipped.
+    const std::string args = pipeline ? "--quiet run " + entry.path().string()
+                                      : "--quiet tile " + entry.path().string() +
+                                            " --set characters=10 --set library.real.max_pair_patches=4"
+                                            " --set library.real.max_single_patches=4 -o tiled.h5";
+    std::string out;
+    const int status = test::run_command("cd " + dir.string() + " && " + test::command(args), &out);
+    INFO(out);
+    CHECK(status == 0);
+  }
+  CHECK(naming_files >= 3);  // run-town, run-battlefield, tile-real
+  CHECK(std::filesystem::exists(dir / "town.h5"));
+  CHECK(std::filesystem::exists(dir / "battlefield.h5"));
+  CHECK(std::filesystem::exists(dir / "tiled.h5"));
 }

@@ -3,6 +3,7 @@
 // example configs (shrunk) as `throng run` pipelines, and imported real data with its walls.
 #include "checker.h"
 #include "scenes.h"
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -20,8 +21,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::string throng_cmd(const std::string& args) { return test::throng_program().string() + " " + args; }
-int run(const std::string& args, std::string* out = nullptr) { return test::run_command(throng_cmd(args), out); }
+using test::run;
 
 std::filesystem::path write_crowd(const std::filesystem::path& dir, const collide::scenes::CollideScene& scene,
                                   const std::string& name = "in.h5") {
@@ -178,7 +178,7 @@ TEST_CASE("collide: the example configs run as pipelines (shrunk)") {
     const auto path = dir / s.config;
     std::ofstream(path) << job;
     std::string out;
-    REQUIRE(test::run_command("cd " + dir.string() + " && " + throng_cmd("--quiet run " + path.string()), &out) == 0);
+    REQUIRE(test::run_command("cd " + dir.string() + " && " + test::command("--quiet run " + path.string()), &out) == 0);
     const auto written = dir / (std::string(s.config).substr(0, std::string(s.config).size() - 5) + ".h5");
     REQUIRE(std::filesystem::exists(written));
     const CrowdFile result = read_crowd_file(written);
@@ -241,9 +241,7 @@ namespace {
 
 std::vector<double> positions(const std::filesystem::path& path) { return read_crowd_file(path).motion.positions; }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 }  // namespace
 
@@ -294,7 +292,7 @@ TEST_CASE("collide: edit -> collide and stitch -> collide pipelines repair and k
   for (const auto& [job, name, margin] : {std::tuple{edit, "edit", 0.4}, std::tuple{stitch, "stitch", 0.0}}) {
     INFO(name);
     std::string out;
-    REQUIRE(test::run_command("cd " + dir.string() + " && " + throng_cmd("--quiet run " + job.string()), &out) == 0);
+    REQUIRE(test::run_command("cd " + dir.string() + " && " + test::command("--quiet run " + job.string()), &out) == 0);
     const CrowdFile before = read_crowd_file(dir / ("before-" + std::string(name) + ".h5"));
     const CrowdFile after = read_crowd_file(dir / ("after-" + std::string(name) + ".h5"));
     CHECK(collide::check::changed_vertices(before.motion, after.motion) > 0);  // there was something to repair

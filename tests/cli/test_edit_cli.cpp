@@ -1,6 +1,7 @@
 // `throng edit` run as a user would: the report, the output file, the example configs, and every documented error
 // with its exit code and no output left behind.
 #include "../graph/synthetic_crowd.h"
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -17,8 +18,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::string throng_cmd(const std::string& args) { return test::throng_program().string() + " " + args; }
-int run(const std::string& args, std::string* out = nullptr) { return test::run_command(throng_cmd(args), out); }
+using test::run;
 
 // A 4 × 5 block marching for 41 frames (ids 100..119), written as a crowd file.
 std::filesystem::path write_input(const std::filesystem::path& dir) {
@@ -95,7 +95,7 @@ drags:
 )");
   std::string out, err;
   // Warnings go to stderr, the report to stdout: keep them apart.
-  REQUIRE(test::run_command("(" + throng_cmd("-q --json edit " + (dir / "in.h5").string() + " --job " + job.string() + " -o " +
+  REQUIRE(test::run_command("(" + test::command("-q --json edit " + (dir / "in.h5").string() + " --job " + job.string() + " -o " +
                                              (dir / "out.h5").string()) +
                                 " 2>" + (dir / "err.txt").string() + ")",
                             &out) == 0);
@@ -245,7 +245,7 @@ TEST_CASE("the battlefield example configs run: the edit job and the pipeline") 
 
   // The pipeline, run from a folder where configs/ is the project's.
   std::filesystem::create_directory_symlink(configs, dir / "configs");
-  REQUIRE(test::run_command("cd " + dir.string() + " && " + throng_cmd("-q run configs/run-battlefield.yaml"), &out) == 0);
+  REQUIRE(test::run_command("cd " + dir.string() + " && " + test::command("-q run configs/run-battlefield.yaml"), &out) == 0);
   CHECK(std::filesystem::exists(dir / "battlefield.png"));
 }
 
@@ -260,7 +260,7 @@ TEST_CASE("a local edit reports the step across its region's edge and warns when
   auto edit = [&](const std::string& flags, nlohmann::json& report, std::string& messages) {
     const auto err = dir / "stderr.txt";
     std::string out;
-    const int code = test::run_command("(" + throng_cmd("--json edit " + input.string() + " --job " + job.string() + " " + flags +
+    const int code = test::run_command("(" + test::command("--json edit " + input.string() + " --job " + job.string() + " " + flags +
                                                          " -o " + (dir / "out.h5").string()) +
                                            " 2>" + err.string() + ")",
                                        &out);

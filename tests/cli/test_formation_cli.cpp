@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "cli.h"
 #include "test_paths.h"
 
 using namespace throng;
@@ -14,13 +15,11 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-int run(const std::string& args, std::string* out = nullptr) {
-  return test::run_command(test::throng_program().string() + " " + args, out);
-}
+using test::run;
 
-std::string config(const std::string& name) { return (test::source_dir() / "configs" / name).string(); }
+using test::config;
 
-void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+using test::write_file;
 
 bool only_inputs_left(const std::filesystem::path& dir) {
   for (const auto& e : std::filesystem::directory_iterator(dir)) {

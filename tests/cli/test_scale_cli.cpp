@@ -1,6 +1,7 @@
 // Working at scale, run as a user would: local edits (`throng edit --local-parts`, the job's `local:` block) and
 // batches (`throng run` with several jobs or a folder; a broken job does not stop the others).
 #include "../graph/synthetic_crowd.h"
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -18,13 +19,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string throng_cmd(const std::string& args) { return test::throng_program().string() + " " + args; }
-int run(const std::string& args, std::string* out = nullptr) { return test::run_command(throng_cmd(args), out); }
+using test::run;
 
 // Runs with stdout in *out and stderr in *err (run_command merges them otherwise).
 int run_split(const fs::path& dir, const std::string& args, std::string* out, std::string* err) {
   const fs::path err_file = dir / "stderr.txt";
-  const int status = test::run_command("(" + throng_cmd(args) + " 2>" + err_file.string() + ")", out);
+  const int status = test::run_command("(" + test::command(args) + " 2>" + err_file.string() + ")", out);
   std::ifstream in(err_file);
   err->assign(std::istreambuf_iterator<char>(in), {});
   return status;

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "scenes.h"
+#include "cli.h"
 #include "test_paths.h"
 
 using namespace throng;
@@ -15,11 +16,9 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-int run(const std::string& args, std::string* out = nullptr) {
-  return test::run_command(test::throng_program().string() + " " + args, out);
-}
+using test::run;
 
-std::string config(const std::string& name) { return (test::source_dir() / "configs" / name).string(); }
+using test::config;
 
 // A small valid job: a 20 m course, 8 agents, a pillar; `extra` is appended (more keys).
 std::string small_job(const std::string& extra = {}) {
@@ -35,7 +34,7 @@ std::string small_job(const std::string& extra = {}) {
          extra;
 }
 
-void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+using test::write_file;
 
 bool only_inputs_left(const std::filesystem::path& dir) {
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
@@ -44,9 +43,7 @@ bool only_inputs_left(const std::filesystem::path& dir) {
   return true;
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 }  // namespace
 
@@ -133,7 +130,7 @@ TEST_CASE("the sketch configs are the test scenes") {
   for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
                                     std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {
     INFO(file);
-    const SketchJob job = read_sketch_job(ConfigNode::load_file(config(file)));
+    const sketch::Job job = read_job<sketch::Job>(ConfigNode::load_file(config(file)));
     REQUIRE(job.drawing.strokes.size() == scene.drawing.strokes.size());
     for (std::size_t i = 0; i < job.drawing.strokes.size(); ++i) {
       CHECK(job.drawing.strokes[i].points == scene.drawing.strokes[i].points);
@@ -155,9 +152,9 @@ TEST_CASE("the sketch configs are the test scenes") {
 }
 
 TEST_CASE("the effective job reads back to the same job") {
-  const SketchJob job =
-      read_sketch_job(ConfigNode::parse(small_job("end_of_path: remove\nweights: {avoid: 1.5}\n"), "job"));
-  const SketchJob again = read_sketch_job(ConfigNode::parse(to_yaml_text(effective_sketch_job(job)), "effective"));
+  const sketch::Job job =
+      read_job<sketch::Job>(ConfigNode::parse(small_job("end_of_path: remove\nweights: {avoid: 1.5}\n"), "job"));
+  const sketch::Job again = read_job<sketch::Job>(ConfigNode::parse(to_yaml_text(effective_job(job)), "effective"));
   CHECK(again.options.end_of_path == sketch::EndOfPath::remove);
   CHECK(again.options.avoid_weight == 1.5);
   CHECK(again.options.duration_s == 6);

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <map>
 
+#include "cli.h"
 #include "test_paths.h"
 
 using namespace throng;
@@ -18,13 +19,11 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-int run(const std::string& args, std::string* out = nullptr) {
-  return test::run_command(test::throng_program().string() + " " + args, out);
-}
+using test::run;
 
-std::string config(const std::string& name) { return (test::source_dir() / "configs" / name).string(); }
+using test::config;
 
-void write_file(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+using test::write_file;
 
 bool only_inputs_left(const std::filesystem::path& dir) {
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
@@ -52,9 +51,7 @@ std::vector<double> numbers(const std::filesystem::path& path) {
   return v;
 }
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
+using test::same_bits;
 
 const char* small_job =
     "region: {min: [0, 0], max: [8, 8], time: [0, 8]}\n"

@@ -1,6 +1,7 @@
 // `throng timewarp` run as a user would: the identity on an undeformed crowd, the warp stored in the output, the
 // clamp's warning, and its errors with their exit codes and no output left behind.
 #include "../graph/synthetic_crowd.h"
+#include "cli.h"
 #include "test_paths.h"
 
 #include <throng/io/crowd_file.h>
@@ -16,9 +17,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-int run(const std::string& args, std::string* out = nullptr) {
-  return test::run_command(test::throng_program().string() + " " + args, out);
-}
+using test::run;
 
 std::string s(const std::filesystem::path& p) { return p.string(); }
 

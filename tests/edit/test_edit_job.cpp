@@ -33,12 +33,12 @@ constraints:
   - {type: on_line, agent: 100, point: [0, 1], direction: [1, 1]}
 )";
 
-EditJob parse(const std::string& text) { return read_edit_job(ConfigNode::parse(text, "edit.yaml")); }
+edit::Job parse(const std::string& text) { return read_job<edit::Job>(ConfigNode::parse(text, "edit.yaml")); }
 
 }  // namespace
 
 TEST_CASE("every key of a full job is read") {
-  const EditJob job = parse(full_job);
+  const edit::Job job = parse(full_job);
   CHECK(job.clip_only);
   CHECK_FALSE(parse("{}").clip_only);  // default: the whole crowd with the clip put back
   const edit::Options& o = job.options;
@@ -71,15 +71,15 @@ TEST_CASE("every key of a full job is read") {
 }
 
 TEST_CASE("the effective job reads back to the same job") {
-  const EditJob job = parse(full_job);
-  const std::string text = to_yaml_text(effective_edit_job(job));
-  const EditJob again = parse(text);
-  CHECK(to_yaml_text(effective_edit_job(again)) == text);
+  const edit::Job job = parse(full_job);
+  const std::string text = to_yaml_text(effective_job(job));
+  const edit::Job again = parse(text);
+  CHECK(to_yaml_text(effective_job(again)) == text);
   CHECK_THAT(text, Contains("alpha: 2") && Contains("petsc_options: -pc_type hypre") && Contains("frame: -1"));
   CHECK(again.request.constraints.size() == 3);
   CHECK(again.options.formation.edits.size() == 2);
   // Defaults are written out in full.
-  const std::string defaults = to_yaml_text(effective_edit_job(parse("{}")));
+  const std::string defaults = to_yaml_text(effective_job(parse("{}")));
   CHECK_THAT(defaults, Contains("sample_step: 1") && Contains("backend: eigen") && Contains("last_frame: end"));
 }
 
@@ -100,19 +100,19 @@ TEST_CASE("malformed entries are configuration errors naming the line") {
 }
 
 TEST_CASE("the local block: parts as a count or auto, vertices_per_part, and bad values naming the key") {
-  const EditJob by_size = parse("local: {parts: auto, vertices_per_part: 2000, halo: 2}\n");
+  const edit::Job by_size = parse("local: {parts: auto, vertices_per_part: 2000, halo: 2}\n");
   CHECK(by_size.options.local.parts == edit::LocalOptions::by_size);
   CHECK(by_size.options.local.vertices_per_part == 2000);
   CHECK(by_size.options.local.halo == 2);
-  const std::string text = to_yaml_text(effective_edit_job(by_size));
+  const std::string text = to_yaml_text(effective_job(by_size));
   CHECK_THAT(text, Contains("parts: auto") && Contains("vertices_per_part: 2000") && Contains("halo: 2"));
   CHECK(parse(text).options.local.parts == edit::LocalOptions::by_size);  // reads back
-  const EditJob counted = parse("local: {parts: 12}\n");
+  const edit::Job counted = parse("local: {parts: 12}\n");
   CHECK(counted.options.local.parts == 12);
   CHECK(counted.options.local.vertices_per_part == edit::LocalOptions{}.vertices_per_part);
-  CHECK_THAT(to_yaml_text(effective_edit_job(counted)), Contains("parts: 12"));
+  CHECK_THAT(to_yaml_text(effective_job(counted)), Contains("parts: 12"));
   CHECK(parse("{}").options.local.parts == 0);  // global solves by default
-  CHECK_THAT(to_yaml_text(effective_edit_job(parse("{}"))), Contains("parts: 0") && Contains("vertices_per_part: "));
+  CHECK_THAT(to_yaml_text(effective_job(parse("{}"))), Contains("parts: 0") && Contains("vertices_per_part: "));
 
   CHECK_THROWS_WITH(parse("local:\n  vertices_per_part: 0\n"), Contains("edit.yaml:2") && Contains("local.vertices_per_part") && Contains("out of range"));
   CHECK_THROWS_WITH(parse("local: {vertices_per_part: 2.5}\n"), Contains("local.vertices_per_part"));

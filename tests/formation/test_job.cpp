@@ -2,6 +2,7 @@
 // the effective job, and the errors with their exit-code types.
 #include <throng/core/errors.h>
 #include <throng/io/formation_job.h>
+#include <throng/formation/runner.h>
 #include <throng/io/formation_shapes.h>
 
 #include <catch2/catch.hpp>
@@ -120,7 +121,7 @@ TEST_CASE("shape generators: circle, grid, polyline, star, strokes, text, nested
 }
 
 TEST_CASE("a job reads keyframes, edits, ids and options, and writes them back as its effective job") {
-  const FormationJob job = read_formation_job(yaml(
+  const FormationJob job = read_job<FormationJob>(yaml(
       two_keyframes +
       "ids: [10, 11, 12, 13]\n"
       "tension: 0.8\n"
@@ -141,11 +142,11 @@ TEST_CASE("a job reads keyframes, edits, ids and options, and writes them back a
   REQUIRE(job.problem.edits.scale.size() == 2);
   CHECK(job.problem.edits.scale[1].members == std::vector<int>{0, 1, 2});
 
-  const YAML::Node effective = effective_formation_job(job);
+  const YAML::Node effective = effective_job(job);
   CHECK(effective["orientation"].as<std::string>() == "pca");
   CHECK(effective["collision"]["min_distance"].as<double>() == 0.5);
   // The effective job reads back to the same problem.
-  const FormationJob again = read_formation_job(ConfigNode(effective, "effective"));
+  const FormationJob again = read_job<FormationJob>(ConfigNode(effective, "effective"));
   CHECK(again.problem.keyframes[0].positions == job.problem.keyframes[0].positions);
   CHECK(again.options.tension == 0.8);
   CHECK(again.problem.edits.scale.size() == 2);
@@ -153,7 +154,7 @@ TEST_CASE("a job reads keyframes, edits, ids and options, and writes them back a
 
 TEST_CASE("hierarchy forms: a tree, sizes, nested and auto and scale edits by group name") {
   SECTION("nested: levels of consecutive individuals") {
-    const FormationJob job = read_formation_job(yaml(
+    const FormationJob job = read_job<FormationJob>(yaml(
         "hierarchy: {nested: [2, 2]}\n" + two_keyframes));
     REQUIRE(job.problem.hierarchy);
     REQUIRE(job.problem.hierarchy->subgroups.size() == 2);
@@ -161,43 +162,43 @@ TEST_CASE("hierarchy forms: a tree, sizes, nested and auto and scale edits by gr
     CHECK(job.problem.hierarchy->subgroups[1].members == std::vector<int>{2, 3});
   }
   SECTION("sizes: one level") {
-    const FormationJob job = read_formation_job(yaml("hierarchy: {sizes: [1, 3]}\n" + two_keyframes));
+    const FormationJob job = read_job<FormationJob>(yaml("hierarchy: {sizes: [1, 3]}\n" + two_keyframes));
     CHECK(job.problem.hierarchy->subgroups[1].members == std::vector<int>{1, 2, 3});
   }
   SECTION("a tree, and a scale edit naming one of its groups") {
-    const FormationJob job = read_formation_job(yaml(
+    const FormationJob job = read_job<FormationJob>(yaml(
         "hierarchy: {name: all, members: [3], groups: [{name: front, members: [0, 1, 2]}]}\n"
         "edits: {scale: [{groups: [front], factor: 2}]}\n" + two_keyframes));
     CHECK(job.problem.hierarchy->members == std::vector<int>{3});
     REQUIRE(job.problem.edits.scale.size() == 1);
     CHECK(job.problem.edits.scale[0].members == std::vector<int>{0, 1, 2});
-    CHECK_THROWS_WITH(read_formation_job(yaml("hierarchy: {name: all, members: [0, 1, 2, 3]}\n"
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml("hierarchy: {name: all, members: [0, 1, 2, 3]}\n"
                                               "edits: {scale: [{groups: [back], factor: 2}]}\n" + two_keyframes)),
                       Contains("no hierarchy group is named 'back'"));
   }
   SECTION("auto: spectral clustering with a largest group") {
-    const FormationJob job = read_formation_job(yaml("hierarchy: {auto: 3}\n" + two_keyframes));
+    const FormationJob job = read_job<FormationJob>(yaml("hierarchy: {auto: 3}\n" + two_keyframes));
     CHECK_FALSE(job.problem.hierarchy);
     CHECK(job.options.auto_group_size == 3);
-    CHECK(effective_formation_job(job)["hierarchy"]["auto"].as<int>() == 3);
+    CHECK(effective_job(job)["hierarchy"]["auto"].as<int>() == 3);
   }
   SECTION("none given: automatic beyond 2,000 individuals; flat: never") {
-    const FormationJob automatic = read_formation_job(yaml(two_keyframes));
+    const FormationJob automatic = read_job<FormationJob>(yaml(two_keyframes));
     CHECK_FALSE(automatic.problem.hierarchy);
     CHECK(automatic.options.auto_group_size == 2000);
-    CHECK(effective_formation_job(automatic)["hierarchy"]["auto"].as<int>() == 2000);
-    const FormationJob flat = read_formation_job(yaml("hierarchy: flat\n" + two_keyframes));
+    CHECK(effective_job(automatic)["hierarchy"]["auto"].as<int>() == 2000);
+    const FormationJob flat = read_job<FormationJob>(yaml("hierarchy: flat\n" + two_keyframes));
     CHECK_FALSE(flat.problem.hierarchy);
     CHECK(flat.options.auto_group_size == 0);
-    const YAML::Node effective = effective_formation_job(flat);
+    const YAML::Node effective = effective_job(flat);
     CHECK(effective["hierarchy"].as<std::string>() == "flat");
-    CHECK(read_formation_job(ConfigNode(effective, "effective")).options.auto_group_size == 0);  // round trip
-    CHECK_THROWS_AS(read_formation_job(yaml("hierarchy: flatter\n" + two_keyframes)), ConfigError);
+    CHECK(read_job<FormationJob>(ConfigNode(effective, "effective")).options.auto_group_size == 0);  // round trip
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml("hierarchy: flatter\n" + two_keyframes)), ConfigError);
   }
 }
 
 TEST_CASE("keyframes from a crowd at given frames, counting back from the end") {
-  FormationJob job = read_formation_job(yaml("from_crowd: {frames: [0, -1]}\n"));
+  FormationJob job = read_job<FormationJob>(yaml("from_crowd: {frames: [0, -1]}\n"));
   REQUIRE(job.from_crowd);
   CrowdFile crowd;
   crowd.motion = CrowdMotion::with_shape(5, 3);
@@ -211,47 +212,47 @@ TEST_CASE("keyframes from a crowd at given frames, counting back from the end") 
   CHECK(job.problem.keyframes[1].time_s == 2.0);
   CHECK(job.problem.keyframes[1].positions(2, 0) == 8.0);
   CHECK(job.problem.ids == std::vector<std::int64_t>{7, 8, 9});
-  FormationJob bad = read_formation_job(yaml("from_crowd: {frames: [0, 5]}\n"));
+  FormationJob bad = read_job<FormationJob>(yaml("from_crowd: {frames: [0, 5]}\n"));
   CHECK_THROWS_AS(resolve_formation_keyframes(bad, &crowd), InputError);
   CHECK_THROWS_AS(resolve_formation_keyframes(bad, nullptr), ConfigError);
 }
 
 TEST_CASE("job errors: data problems are InputErrors with the line, syntax and options ConfigErrors") {
   SECTION("a keyframe with a different count") {
-    CHECK_THROWS_AS(read_formation_job(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
                                             "  - {time: 1, positions: [[0, 0], [1, 0]]}\n")),
                     InputError);
-    CHECK_THROWS_WITH(read_formation_job(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
                                               "  - {time: 1, positions: [[0, 0], [1, 0]]}\n")),
                       Contains("job.yaml:3") && Contains("keyframe 1 has 2 individuals, keyframe 0 has 3"));
   }
   SECTION("duplicate positions") {
-    CHECK_THROWS_WITH(read_formation_job(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0], [0, 1]]}\n"
                                               "  - {time: 1, positions: [[5, 5], [1, 0], [5, 5]]}\n")),
                       Contains("individuals 0 and 2 are both at (5, 5)"));
   }
   SECTION("times not increasing") {
-    CHECK_THROWS_AS(read_formation_job(yaml("keyframes:\n  - {time: 2, positions: [[0, 0], [1, 0]]}\n"
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml("keyframes:\n  - {time: 2, positions: [[0, 0], [1, 0]]}\n"
                                             "  - {time: 2, positions: [[0, 1], [1, 1]]}\n")),
                     InputError);
   }
   SECTION("2-D beside 3-D") {
-    CHECK_THROWS_AS(read_formation_job(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n"
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml("keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n"
                                             "  - {time: 1, positions: [[0, 1, 0], [1, 1, 0]]}\n")),
                     InputError);
   }
   SECTION("syntax and options") {
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "tension: 2\n")), ConfigError);
-    CHECK_THROWS_WITH(read_formation_job(yaml(two_keyframes + "tensoin: 0.5\n")), Contains("tensoin"));
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "reordering: best\n")), ConfigError);
-    CHECK_THROWS_AS(read_formation_job(yaml("keyframes: [{time: 0, positions: [[0, 0]]}]\n")), ConfigError);
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "from_crowd: {frames: [0, 1]}\n")), ConfigError);
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "edits: {add: [[0, 1, 2]]}\n")), ConfigError);
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "edits: {scale: [{pairs: [[0, 1]], factor: 0}]}\n")), ConfigError);
-    CHECK_THROWS_AS(read_formation_job(yaml(two_keyframes + "ids: [1, 1, 2, 3]\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "tension: 2\n")), ConfigError);
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml(two_keyframes + "tensoin: 0.5\n")), Contains("tensoin"));
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "reordering: best\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml("keyframes: [{time: 0, positions: [[0, 0]]}]\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "from_crowd: {frames: [0, 1]}\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "edits: {add: [[0, 1, 2]]}\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "edits: {scale: [{pairs: [[0, 1]], factor: 0}]}\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "ids: [1, 1, 2, 3]\n")), ConfigError);
   }
   SECTION("a disconnected graph after edits reaches the solver as an InputError naming the cut-off individuals") {
-    const FormationJob job = read_formation_job(yaml(
+    const FormationJob job = read_job<FormationJob>(yaml(
         "keyframes:\n  - {time: 0, positions: [[0, 0], [1, 0]]}\n  - {time: 1, positions: [[0, 1], [1, 1]]}\n"
         "edits: {remove: [[0, 1]]}\n"));
     CHECK_THROWS_AS(formation::animate_formation(job.problem, job.options), InputError);
@@ -262,7 +263,7 @@ TEST_CASE("errors the solver finds name the place in the job: a disconnected gra
   // The job's keyframes, edits and hierarchy carry their file:line into the problem; the solver's messages
   // about them start with it.
   auto solve = [](const std::string& text) {
-    const FormationJob job = read_formation_job(yaml(text));
+    const FormationJob job = read_job<FormationJob>(yaml(text));
     (void)formation::animate_formation(job.problem, job.options);
   };
   SECTION("a keyframe whose graph the edits disconnect: the keyframe's line") {
@@ -291,7 +292,7 @@ TEST_CASE("errors the solver finds name the place in the job: a disconnected gra
 TEST_CASE("the result lists each keyframe's frame and graph and the crowd's formation edges are those kept throughout") {
   // A square with a centre, then the same turned by 45° and spread: Delaunay joins the centre to every corner
   // and the corners around; the job removes one rim edge in keyframe 1 only and adds a diagonal everywhere.
-  const FormationJob job = read_formation_job(yaml(
+  const FormationJob job = read_job<FormationJob>(yaml(
       "keyframes:\n"
       "  - {time: 0, positions: [[0, 0], [2, 0], [2, 2], [0, 2], [1, 1]]}\n"
       "  - {time: 1, positions: [[10, 0], [13, 3], [10, 6], [7, 3], [10, 3]], edits: {remove: [[0, 1]]}}\n"
@@ -303,7 +304,7 @@ TEST_CASE("the result lists each keyframe's frame and graph and the crowd's form
   CHECK(r.keyframe_edges[0] == rim_and_spokes);
   const std::vector<P> without_01{{0, 2}, {0, 3}, {0, 4}, {1, 2}, {1, 4}, {2, 3}, {2, 4}, {3, 4}};
   CHECK(r.keyframe_edges[1] == without_01);
-  const CrowdFile crowd = formation_crowd(r);
+  const Crowd crowd{r.motion, {}, formation::kept_edges(r)};
   REQUIRE(crowd.formation_edges.size() == without_01.size());
   for (std::size_t e = 0; e < without_01.size(); ++e) {
     CHECK(crowd.formation_edges[e][0] == without_01[e][0]);

@@ -127,7 +127,7 @@ TEST_CASE("keyframes in one order round the formation are joined by direct paths
 
 TEST_CASE("the example configs' paths are direct: the marching band and the airshow") {
   auto run = [](const char* name) {
-    const FormationJob job = read_formation_job(ConfigNode::load_file(test::source_dir() / "configs" / name));
+    const FormationJob job = read_job<FormationJob>(ConfigNode::load_file(test::source_dir() / "configs" / name));
     return animate_formation(job.problem, job.options);
   };
   {
@@ -152,7 +152,7 @@ TEST_CASE("the 1,260-individual hierarchy: the groups' paths are direct but for 
   // into an interval whose own move is 9 m, so the groups bulge out and back (worst 1.49 at τ = 0, 5.3 at 0.5).
   // Bounds 5-10% over the measures.
   const FormationJob job =
-      read_formation_job(ConfigNode::load_file(test::source_dir() / "configs" / "formation-hierarchy-1260.yaml"));
+      read_job<FormationJob>(ConfigNode::load_file(test::source_dir() / "configs" / "formation-hierarchy-1260.yaml"));
   auto group_ratios = [](const Result& r) {
     std::vector<std::vector<int>> groups;
     for (const Group& g : r.hierarchy.subgroups) {

@@ -38,23 +38,24 @@ search: {max_steps: 20000}
 output: {frame_rate: 5, repeat: [2, 1, 1]}
 )";
 
-TilingJob parse(const std::string& text) { return read_tiling_job(ConfigNode::parse(text, "job.yaml")); }
+TilingJob parse(const std::string& text) { return read_job<TilingJob>(ConfigNode::parse(text, "job.yaml")); }
 
 }  // namespace
 
 TEST_CASE("a tiling job reads every part and its effective form reads back the same") {
   const TilingJob job = parse(small_job);
-  CHECK(job.library.types.size() == 12);
-  CHECK(job.library.types[job.library.find("meet")].preference == 3.0);
-  REQUIRE(job.keyframes.size() == 1);
-  CHECK(job.keyframes[0].type == job.library.find("meet"));
+  const Prepared prepared = prepare(job, nullptr);  // reading builds nothing: the library is made here
+  CHECK(prepared.library.types.size() == 12);
+  CHECK(prepared.library.types[prepared.library.find("meet")].preference == 3.0);
+  REQUIRE(prepared.keyframes.size() == 1);
+  CHECK(prepared.keyframes[0].type == prepared.library.find("meet"));
   CHECK(std::abs(job.keyframes[0].transform.angle - 30 * M_PI / 180) < 1e-12);
   CHECK(job.environment.sources.size() == 1);
   CHECK(job.options.preference.position);
   CHECK(std::abs(job.options.preference.direction->sigma_rad2 - 900 * std::pow(M_PI / 180, 2)) < 1e-12);
   CHECK(std::abs(job.options.limits.bend_rad - 8 * M_PI / 180) < 1e-12);
   CHECK(job.layout.repeat == std::array<int, 3>{2, 1, 1});
-  const YAML::Node effective = effective_tiling_job(job);
+  const YAML::Node effective = effective_job(job);
   CHECK(effective["chains"].as<int>() == 2);
   CHECK(effective["characters"].as<int>() == 12);
   CHECK(effective["limits"]["bend"].as<double>() == 8);
@@ -63,14 +64,15 @@ TEST_CASE("a tiling job reads every part and its effective form reads back the s
   CHECK(effective["library"]["builtin_options"]["walk_speed"].as<double>() == 1.2);
   CHECK(effective["region"]["periodic"][0].as<bool>());
   const std::string once = to_yaml_text(effective);
-  const std::string twice = to_yaml_text(effective_tiling_job(parse(once)));
+  const std::string twice = to_yaml_text(effective_job(parse(once)));
   CHECK(once == twice);
 }
 
 TEST_CASE("tiling job errors are configuration errors naming the place") {
+  // Read, then prepared (the library built and the resources bounded), as a run does before tiling.
   const auto fails = [](const std::string& text, const std::string& needle) {
     try {
-      (void)parse(text);
+      (void)prepare(parse(text), nullptr);
     } catch (const ConfigError& e) {
       INFO(e.what());
       CHECK(std::string(e.what()).find(needle) != std::string::npos);
@@ -99,23 +101,22 @@ TEST_CASE("tiling job errors are configuration errors naming the place") {
         "keyframes: [{patch: walk, position: [400, 4], time: 4}]\n", "keyframes[0].position");
   fails("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {builtin: [walk]}\n"
         "keyframes: [{patch: walk, position: [4, 4], time: -3}]\n", "keyframes[0].time");
-  CHECK_NOTHROW(parse("region: {min: [0, 0], max: [8, 8], time: [0, 8], periodic: [true, false, false]}\n"
-                      "library: {builtin: [walk]}\nkeyframes: [{patch: walk, position: [12, 4], time: 4}]\n"));
+  CHECK_NOTHROW(prepare(parse("region: {min: [0, 0], max: [8, 8], time: [0, 8], periodic: [true, false, false]}\n"
+                              "library: {builtin: [walk]}\nkeyframes: [{patch: walk, position: [12, 4], time: 4}]\n"),
+                        nullptr));
 }
 
 TEST_CASE("the tiling data written with the characters reads back bit for bit and checks perfect") {
   TilingJob job = parse(small_job);
   NoProgress quiet;
-  const TilingResult result = tile(job.library, job.environment, job.keyframes, job.options, quiet);
+  const tiling::Run run = tiling::run({}, job, quiet, Communicator::single());
+  const TilingResult& result = run.result;
   REQUIRE(result.report.perfect());
-  const Characters laid = lay_out(job.library, result.tiling, *job.environment.scene.region, job.layout);
+  const Characters& laid = run.characters;
   CrowdFile crowd;
-  crowd.motion = laid.motion;
-  crowd.scene = laid_scene(job.environment, job.layout);
+  static_cast<Crowd&>(crowd) = run.crowd;
   const auto path = test::scratch_dir("tiling_job") / "tiling.h5";
-  write_crowd_file(path, crowd, [&](const h5::Group& g) {
-    write_tiling_data(g, job.library, result, job.environment, check_options_for(job.options), laid, job.layout);
-  });
+  write_crowd_file(path, crowd, [&](const h5::Group& g) { write_data(g.create_group("tiling"), run); });
   // The crowd's scene covers both laid copies along the periodic x axis; the tiling keeps the tile.
   const CrowdFile read = read_crowd_file(path);
   REQUIRE(read.scene.region);
@@ -147,7 +148,7 @@ TEST_CASE("the tiling data written with the characters reads back bit for bit an
       CHECK(a.paths[f].positions == b.paths[f].positions);
     }
   }
-  CHECK(back.library.types.size() == job.library.types.size());
+  CHECK(back.library.types.size() == run.library.types.size());
   CHECK(back.environment.sources.size() == 1);
   CHECK(back.check.limits.bend_rad == job.options.limits.bend_rad);
   const CheckReport c = check_tiling(back.library, back.tiling, back.environment, back.check);

@@ -1,64 +1,15 @@
 #include <throng/core/errors.h>
-#include <throng/io/edge_edits_job.h>
+#include <throng/edit/schema.h>
+#include <throng/io/edge_edits.h>
 #include <throng/io/edit_job.h>
 
 #include <limits>
 #include <sstream>
 #include <string>
+#include <variant>
 
 namespace throng {
 namespace {
-
-using edit::Options;
-constexpr std::size_t open_end = std::numeric_limits<std::size_t>::max();
-
-void bind_solver(OptionBinder& b, linalg::SolverOptions& s) {
-  b.choice("backend", s.backend, {"eigen", "petsc"});
-  b.field("blas_threads", s.blas_threads, Range::closed(0, 1024));
-  b.field("relative_tolerance", s.relative_tolerance, Range{0.0, 1.0, true, true});
-  b.field("max_iterations", s.max_iterations, Range::closed(1, 1e9));
-  b.field("petsc_prefix", s.petsc_prefix);
-  b.field("petsc_options", s.petsc_options);
-  b.field("constraint_tolerance", s.constraint_tolerance, Range{0.0, 1.0, true, true});
-  b.field("schur_cache_megabytes", s.schur_cache_megabytes, Range::non_negative());
-}
-
-// Every option but the clip's frame range and agents and the formation edits (read by hand: `end`, lists).
-void bind(OptionBinder& b, Options& o) {
-  b.section("clip", [&](OptionBinder& c) { c.field("sample_step", o.clip.sample_step, Range::closed(1, 1e9)); });
-  b.section("formation", [&](OptionBinder& f) { f.field("max_edge_length", o.formation.max_edge_length, Range::non_negative()); });
-  b.section("weights", [&](OptionBinder& w) {
-    w.field("alpha", o.alpha, Range::non_negative());
-    w.field("beta", o.beta, Range::non_negative());
-    w.field("alpha_prime", o.alpha_prime, Range::non_negative());
-    w.field("beta_prime", o.beta_prime, Range::non_negative());
-  });
-  b.field("scale_compensation", o.scale_compensation);
-  b.section("features", [&](OptionBinder& f) {
-    f.field("min_length", o.features.min_length, Range::positive());
-    f.field("degenerate_ratio", o.features.degenerate_ratio, Range{0.0, 1.0, false, true});
-  });
-  b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
-  b.section("local", [&](OptionBinder& l) {  // parts: read and written by hand (a count or `auto`)
-    l.field("vertices_per_part", o.local.vertices_per_part, Range::closed(1, 1e9));
-    l.field("halo", o.local.halo, Range::closed(-1, 1e9));
-    l.field("seed", o.local.seed, Range::closed(0, 2147483646));
-    l.field("max_cached_regions", o.local.max_cached_regions, Range::closed(1, 1e6));
-  });
-}
-
-// An input frame index (≥ 0), for the clip.
-std::size_t frame_index(const ConfigNode& node) {
-  const std::int64_t v = node.as_int();
-  if (v < 0) node.fail("frame " + std::to_string(v) + " is negative: frames are indices into the input, from 0");
-  return static_cast<std::size_t>(v);
-}
-
-// An input frame index, or `end` (open_end).
-std::size_t frame_or_end(const ConfigNode& node) {
-  if (node.is_scalar() && node.as_string() == "end") return open_end;
-  return frame_index(node);
-}
 
 // A request frame: an index, negative counting back from the clip's last frame, or `end` (−1).
 edit::Frame request_frame(const ConfigNode& node) {
@@ -86,64 +37,82 @@ Eigen::Vector2d point(const ConfigNode& node) {
   return {v[0], v[1]};
 }
 
-YAML::Node flow(std::initializer_list<double> values) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (double v : values) n.push_back(yaml_number(v));
-  n.SetStyle(YAML::EmitterStyle::Flow);
+YAML::Node flow(const Eigen::Vector2d& p) { return yaml_numbers({p.x(), p.y()}); }
+
+YAML::Node request_frames_yaml(edit::Frame first, edit::Frame last) { return yaml_integers({first, last}); }
+
+// One request entry as the job writes it (read_handles and read_constraints read it back).
+YAML::Node entry(const edit::Pin& p) {
+  YAML::Node n;
+  n["agent"] = p.agent;
+  n["frame"] = p.frame;
+  if (p.position) n["position"] = flow(*p.position);
   return n;
 }
 
-YAML::Node flow(const Eigen::Vector2d& p) { return flow({p.x(), p.y()}); }
-
-YAML::Node request_frames_yaml(edit::Frame first, edit::Frame last) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  n.push_back(first);
-  n.push_back(last);
-  n.SetStyle(YAML::EmitterStyle::Flow);
+YAML::Node entry(const edit::Drag& d) {
+  YAML::Node n;
+  if (!d.selection.agents.empty()) n["agents"] = yaml_integers(d.selection.agents);
+  n["frames"] = request_frames_yaml(d.selection.first_frame, d.selection.last_frame);
+  n["offset"] = flow(d.offset);
+  n["rotation"] = yaml_number(d.rotation);
+  if (d.pivot) n["pivot"] = flow(*d.pivot);
   return n;
 }
 
-YAML::Node ids_yaml(const std::vector<std::int64_t>& values) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (std::int64_t v : values) n.push_back(v);
-  n.SetStyle(YAML::EmitterStyle::Flow);
+YAML::Node entry(const edit::RelativePosition& v) {
+  YAML::Node n;
+  n["agent"] = v.agent;
+  n["type"] = "relative_position";
+  n["other"] = v.other;
+  n["frames"] = request_frames_yaml(v.first_frame, v.last_frame);
+  if (v.offset) n["offset"] = flow(*v.offset);
   return n;
 }
 
-void read_clip(const ConfigNode& job, edit::Options& o) {
-  const auto clip = job.find("clip");
-  if (!clip) return;
-  if (auto f = clip->find("first_frame")) o.clip.first_frame = frame_index(*f);
-  if (auto f = clip->find("last_frame")) o.clip.last_frame = frame_or_end(*f);
-  if (o.clip.last_frame != open_end && o.clip.last_frame <= o.clip.first_frame) {
-    clip->fail("last_frame " + std::to_string(o.clip.last_frame) + " must be after first_frame " +
-               std::to_string(o.clip.first_frame));
-  }
-  if (auto a = clip->find("agents")) {
-    o.clip.agents = ids(*a);
-    if (o.clip.agents.empty()) a->fail("an empty agent list selects nobody: leave agents out to take every agent");
-  }
+YAML::Node entry(const edit::Velocity& v) {
+  YAML::Node n;
+  n["agent"] = v.agent;
+  n["type"] = "velocity";
+  n["frame"] = v.frame;
+  n["velocity"] = flow(v.velocity);
+  return n;
 }
 
-// local.parts: a part count (0 = global solves) or `auto` (LocalOptions::by_size: from vertices_per_part).
-void read_local_parts(const ConfigNode& job, edit::Options& o) {
-  const auto local = job.find("local");
-  if (!local) return;
-  const auto parts = local->find("parts");
-  if (!parts) return;
-  if (parts->is_scalar() && parts->as_string() == "auto") {
-    o.local.parts = edit::LocalOptions::by_size;
-    return;
+YAML::Node entry(const edit::OnLine& v) {
+  YAML::Node n;
+  n["agent"] = v.agent;
+  n["type"] = "on_line";
+  n["frames"] = request_frames_yaml(v.first_frame, v.last_frame);
+  n["point"] = flow(v.point);
+  n["direction"] = flow(v.direction);
+  return n;
+}
+
+YAML::Node entry(const edit::Constraint& c) {
+  return std::visit([](const auto& v) { return entry(v); }, c);
+}
+
+// `key: [entries]`, left out when there are none.
+template <class T>
+void write_list(YAML::Node& out, const char* key, const std::vector<T>& items) {
+  if (items.empty()) return;
+  YAML::Node list(YAML::NodeType::Sequence);
+  for (const T& item : items) list.push_back(entry(item));
+  out[key] = list;
+}
+
+// The clip's cross-field rules (the schema reads the values): a range that ends after it starts, and agents that
+// select somebody.
+void check_clip(const ConfigNode& job, const ClipOptions& clip) {
+  const auto node = job.find("clip");
+  if (!node) return;
+  if (clip.last_frame != std::numeric_limits<std::size_t>::max() && clip.last_frame <= clip.first_frame) {
+    node->fail("last_frame " + std::to_string(clip.last_frame) + " must be after first_frame " + std::to_string(clip.first_frame));
   }
-  if (!parts->is_scalar()) parts->fail("expected a part count or auto");
-  std::int64_t v = 0;
-  try {
-    v = parts->as_int();
-  } catch (const ConfigError&) {
-    parts->fail("expected a part count (0 = global solves) or auto, found '" + parts->as_string() + "'");
+  if (const auto agents = node->find("agents"); agents && clip.agents.empty()) {
+    agents->fail("an empty agent list selects nobody: leave agents out to take every agent");
   }
-  if (v < 0 || v > 1000000000) parts->fail("value " + std::to_string(v) + " is out of range, expected a part count in [0, 1e9] or auto");
-  o.local.parts = static_cast<int>(v);
 }
 
 void read_handles(const ConfigNode& job, edit::Request& r) {
@@ -207,118 +176,33 @@ void read_constraints(const ConfigNode& job, edit::Request& r) {
 
 }  // namespace
 
-EditJob read_edit_job(const ConfigNode& job) {
-  EditJob parsed;
-  OptionReader reader(job);
-  bind(reader, parsed.options);
-  read_clip(job, parsed.options);
-  read_local_parts(job, parsed.options);
+}  // namespace throng
+
+namespace throng::edit {
+
+void read_job(const ConfigNode& job, Job& parsed) {
+  read_options(job, describe, parsed);
+  check_clip(job, parsed.options.clip);
   read_edge_edits(job, parsed.options.formation, "the input");
   read_handles(job, parsed.request);
   read_constraints(job, parsed.request);
-  if (auto v = job.find("clip_only")) parsed.clip_only = v->as_bool();
   job.finish();
-  try {
-    edit::validate(parsed.options);
-  } catch (const Error& e) {
-    job.fail(e.what());
-  }
-  return parsed;
 }
 
-YAML::Node effective_edit_job(const EditJob& job) {
+YAML::Node effective_job(const Job& job) {
   YAML::Node out(YAML::NodeType::Map);  // a map already, so the writer's copy of the handle shares it
-  edit::Options options = job.options;
-  OptionWriter writer(out);
-  bind(writer, options);
-  out["clip_only"] = job.clip_only;
-  const auto& o = job.options;
-  if (o.local.parts == edit::LocalOptions::by_size) {
-    out["local"]["parts"] = "auto";
-  } else {
-    out["local"]["parts"] = o.local.parts;
-  }
-  out["clip"]["first_frame"] = static_cast<std::uint64_t>(o.clip.first_frame);
-  if (o.clip.last_frame == open_end) {
-    out["clip"]["last_frame"] = "end";
-  } else {
-    out["clip"]["last_frame"] = static_cast<std::uint64_t>(o.clip.last_frame);
-  }
-  if (!o.clip.agents.empty()) out["clip"]["agents"] = ids_yaml(o.clip.agents);
-  write_edge_edits(out, o.formation);
-  const auto& r = job.request;
-  if (!r.pins.empty()) {
-    YAML::Node pins(YAML::NodeType::Sequence);
-    for (const edit::Pin& p : r.pins) {
-      YAML::Node n;
-      n["agent"] = p.agent;
-      n["frame"] = p.frame;
-      if (p.position) n["position"] = flow(*p.position);
-      pins.push_back(n);
-    }
-    out["pins"] = pins;
-  }
-  if (!r.drags.empty()) {
-    YAML::Node drags(YAML::NodeType::Sequence);
-    for (const edit::Drag& d : r.drags) {
-      YAML::Node n;
-      if (!d.selection.agents.empty()) n["agents"] = ids_yaml(d.selection.agents);
-      n["frames"] = request_frames_yaml(d.selection.first_frame, d.selection.last_frame);
-      n["offset"] = flow(d.offset);
-      n["rotation"] = yaml_number(d.rotation);
-      if (d.pivot) n["pivot"] = flow(*d.pivot);
-      drags.push_back(n);
-    }
-    out["drags"] = drags;
-  }
-  if (!r.constraints.empty()) {
-    YAML::Node list(YAML::NodeType::Sequence);
-    for (const edit::Constraint& c : r.constraints) {
-      YAML::Node n;
-      std::visit(
-          [&](const auto& v) {
-            using T = std::decay_t<decltype(v)>;
-            n["agent"] = v.agent;
-            if constexpr (std::is_same_v<T, edit::RelativePosition>) {
-              n["type"] = "relative_position";
-              n["other"] = v.other;
-              n["frames"] = request_frames_yaml(v.first_frame, v.last_frame);
-              if (v.offset) n["offset"] = flow(*v.offset);
-            } else if constexpr (std::is_same_v<T, edit::Velocity>) {
-              n["type"] = "velocity";
-              n["frame"] = v.frame;
-              n["velocity"] = flow(v.velocity);
-            } else {
-              n["type"] = "on_line";
-              n["frames"] = request_frames_yaml(v.first_frame, v.last_frame);
-              n["point"] = flow(v.point);
-              n["direction"] = flow(v.direction);
-            }
-          },
-          c);
-      list.push_back(n);
-    }
-    out["constraints"] = list;
-  }
+  write_options(out, describe, job);
+  write_edge_edits(out, job.options.formation);
+  write_list(out, "pins", job.request.pins);
+  write_list(out, "drags", job.request.drags);
+  write_list(out, "constraints", job.request.constraints);
   return out;
 }
 
-void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result, bool clip_only, double seam_jump_m) {
-  const h5::Group g = throng_parameters.create_group("edit");
-  std::vector<std::int64_t> frames(result.sample_frames.begin(), result.sample_frames.end());
+void write_data(const h5::Group& g, const Run& run) {
+  const std::vector<std::int64_t> frames(run.result.sample_frames.begin(), run.result.sample_frames.end());
   g.write("sample_frames", frames, {frames.size()});
-  g.write("left_out", result.report.left_out, {result.report.left_out.size()});
-  g.set_attribute("first_frame", static_cast<std::int64_t>(result.first_frame));
-  g.set_attribute("last_frame", static_cast<std::int64_t>(result.last_frame));
-  g.set_attribute("factorization", result.report.factorization);
-  g.set_attribute("clip_only", static_cast<std::int64_t>(clip_only ? 1 : 0));
-  g.set_attribute("seam_jump_m", seam_jump_m);
-  g.set_attribute("max_output_residual_m", result.report.max_output_residual);
-  if (result.report.parts > 0) {  // a local edit: how much of the graph it solved
-    g.set_attribute("local_parts", static_cast<std::int64_t>(result.report.parts));
-    g.set_attribute("region_parts", static_cast<std::int64_t>(result.report.region_parts));
-    g.set_attribute("region_vertices", static_cast<std::int64_t>(result.report.region_vertices));
-  }
+  g.write("left_out_ids", run.result.report.left_out, {run.result.report.left_out.size()});
 }
 
-}  // namespace throng
+}  // namespace throng::edit

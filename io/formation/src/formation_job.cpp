@@ -1,5 +1,7 @@
 #include <throng/core/errors.h>
+#include <throng/core/format.h>
 #include <throng/io/formation_job.h>
+#include <throng/formation/schema.h>
 #include <throng/io/formation_shapes.h>
 
 #include <algorithm>
@@ -19,38 +21,6 @@ using formation::OrientationAlignment;
 using formation::Pair;
 using formation::Reordering;
 
-// Every option but the data (keyframes, edits, hierarchy, ids).
-void bind(OptionBinder& b, Options& o) {
-  b.field("frame_rate", o.frame_rate_hz, Range::positive());
-  b.field("tension", o.tension, Range::closed(0, 1));
-  b.choice("reordering", o.reordering,
-           {{"none", Reordering::none}, {"greedy", Reordering::greedy}, {"max_min", Reordering::max_min}});
-  b.choice("orientation", o.orientation,
-           {{"none", OrientationAlignment::none}, {"pca", OrientationAlignment::pca},
-            {"procrustes", OrientationAlignment::procrustes}});
-  b.field("isotropy_tolerance", o.isotropy_tolerance, Range{0.0, 1.0, false, true});
-  b.field("match_individuals", o.match_individuals);
-  b.field("radius", o.radius_m, Range::non_negative());
-  b.section("collision", [&](OptionBinder& c) {
-    formation::CollisionOptions& k = o.collision;
-    c.field("enabled", k.enabled);
-    c.field("min_distance", k.min_distance_m, Range::positive());
-    c.field("relaxation_time", k.relaxation_time_s, Range::positive());
-    c.field("tracking_time", k.tracking_time_s, Range::positive());
-    c.field("repulsion_strength", k.repulsion_strength_m_per_s2, Range::non_negative());
-    c.field("repulsion_range", k.repulsion_range_m, Range::positive());
-    c.field("time_step", k.time_step_s, Range::positive());
-    c.field("smoothing_time", k.smoothing_time_s, Range::positive());
-    c.field("smoothing_passes", k.smoothing_passes, Range::closed(1, 1000));
-    c.field("projection_sweeps", k.projection_sweeps, Range::closed(1, 1e6));
-  });
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 int read_index(const ConfigNode& node) {
   const std::int64_t v = node.as_int();
@@ -95,7 +65,7 @@ AdjacencyEdits read_edits(const ConfigNode& node, const std::optional<Group>& hi
     for (const ConfigNode& e : s->elements()) {
       const ConfigNode f = e.at("factor");
       const double factor = f.as_double();
-      if (!std::isfinite(factor) || !(factor > 0)) f.fail("factor must be a finite number > 0, got " + number(factor));
+      if (!std::isfinite(factor) || !(factor > 0)) f.fail("factor must be a finite number > 0, got " + with_digits(factor, 6));
       bool any = false;
       if (auto p = e.find("pairs")) {
         edits.scale.push_back(EdgeScale{read_pairs(*p), {}, factor});
@@ -241,26 +211,17 @@ void require_distinct(const Eigen::MatrixXd& p, const ConfigNode& where, std::si
       std::ostringstream s;
       s << where.where() << ": keyframe " << k << ": individuals " << std::min(order[i], order[i - 1]) << " and "
         << std::max(order[i], order[i - 1]) << " are both at (" << p(order[i], 0) << ", " << p(order[i], 1)
-        << (p.cols() == 3 ? ", " + number(p(order[i], 2)) : std::string()) << "); every individual needs its own position";
+        << (p.cols() == 3 ? ", " + with_digits(p(order[i], 2), 6) : std::string()) << "); every individual needs its own position";
       throw InputError(s.str());
     }
   }
 }
 
-YAML::Node flow_numbers(const std::vector<double>& values) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (double v : values) n.push_back(yaml_number(v));
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
-
 }  // namespace
 
-FormationJob read_formation_job(const ConfigNode& job) {
-  FormationJob parsed;
+void read_job(const ConfigNode& job, FormationJob& parsed) {
   Options& o = parsed.options;
-  OptionReader reader(job);
-  bind(reader, o);
+  read_options(job, formation::describe, o);
 
   if (auto h = job.find("hierarchy")) {
     if (h->is_scalar() && h->as_string() == "flat") {
@@ -289,7 +250,7 @@ FormationJob read_formation_job(const ConfigNode& job) {
   if (has_crowd) {
     const ConfigNode c = job.at("from_crowd");
     FormationCrowdSource source;
-    if (auto f = c.find("file")) source.file = f->as_string();
+    if (auto f = c.find("file")) source.file = f->as_path().string();
     const ConfigNode frames = c.at("frames");
     for (const ConfigNode& f : frames.elements()) source.frames.push_back(static_cast<long>(f.as_int()));
     if (source.frames.size() < 2) frames.fail("give at least 2 frames");
@@ -323,8 +284,8 @@ FormationJob read_formation_job(const ConfigNode& job) {
         const formation::Keyframe& first = parsed.problem.keyframes.front();
         const formation::Keyframe& previous = parsed.problem.keyframes.back();
         if (!(keyframe.time_s > previous.time_s))
-          throw InputError(time.where() + ": keyframe " + std::to_string(k) + " is at " + number(keyframe.time_s) +
-                           " s, not after keyframe " + std::to_string(k - 1) + "'s " + number(previous.time_s) +
+          throw InputError(time.where() + ": keyframe " + std::to_string(k) + " is at " + with_digits(keyframe.time_s, 6) +
+                           " s, not after keyframe " + std::to_string(k - 1) + "'s " + with_digits(previous.time_s, 6) +
                            " s; keyframe times must increase strictly");
         if (keyframe.positions.rows() != first.positions.rows())
           throw InputError(key.where() + ": keyframe " + std::to_string(k) + " has " +
@@ -344,10 +305,9 @@ FormationJob read_formation_job(const ConfigNode& job) {
       job.at("ids").fail(std::to_string(parsed.problem.ids.size()) + " ids for " + std::to_string(n) + " individuals");
   }
   job.finish();
-  return parsed;
 }
 
-void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd) {
+void resolve_formation_keyframes(FormationJob& job, const Crowd* crowd) {
   if (!job.from_crowd) return;
   if (crowd == nullptr) throw ConfigError("from_crowd: no crowd to take the keyframes from (give from_crowd.file)");
   const CrowdMotion& m = crowd->motion;
@@ -370,17 +330,15 @@ void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd) {
                       std::to_string(m.agent_count()) + " agents");
 }
 
-YAML::Node effective_formation_job(const FormationJob& job) {
+YAML::Node effective_job(const FormationJob& job) {
   YAML::Node out(YAML::NodeType::Map);
-  Options options = job.options;
-  OptionWriter writer(out);
-  bind(writer, options);
+  write_options(out, formation::describe, static_cast<const formation::Job&>(job));
   if (job.from_crowd) {
     YAML::Node c;
     if (!job.from_crowd->file.empty()) c["file"] = job.from_crowd->file;
     std::vector<double> frames(job.from_crowd->frames.begin(), job.from_crowd->frames.end());
-    c["frames"] = flow_numbers(frames);
-    if (!job.from_crowd->times.empty()) c["times"] = flow_numbers(job.from_crowd->times);
+    c["frames"] = yaml_numbers(frames);
+    if (!job.from_crowd->times.empty()) c["times"] = yaml_numbers(job.from_crowd->times);
     c["dimension"] = job.from_crowd->dimension;
     out["from_crowd"] = c;
   } else {
@@ -407,21 +365,6 @@ YAML::Node effective_formation_job(const FormationJob& job) {
   return out;
 }
 
-CrowdFile formation_crowd(const formation::Result& result) {
-  CrowdFile file;
-  file.motion = result.motion;
-  // The neighbour relations kept through every keyframe: the edges in all keyframes' graphs (sorted lists).
-  std::vector<Pair> kept = result.keyframe_edges.empty() ? std::vector<Pair>{} : result.keyframe_edges.front();
-  for (std::size_t k = 1; k < result.keyframe_edges.size(); ++k) {
-    std::vector<Pair> both;
-    std::set_intersection(kept.begin(), kept.end(), result.keyframe_edges[k].begin(), result.keyframe_edges[k].end(),
-                          std::back_inserter(both));
-    kept = std::move(both);
-  }
-  for (const Pair& e : kept) file.formation_edges.push_back({e[0], e[1]});
-  return file;
-}
-
 namespace {
 void list_groups(const Group& g, std::int64_t parent, std::vector<std::string>& names, std::vector<std::int64_t>& parents) {
   const auto index = static_cast<std::int64_t>(names.size());
@@ -431,9 +374,13 @@ void list_groups(const Group& g, std::int64_t parent, std::vector<std::string>& 
 }
 }  // namespace
 
-void write_formation_data(const h5::Group& throng_parameters, const FormationJob& job, const formation::Result& result) {
-  const h5::Group g = throng_parameters.create_group("formation");
-  const auto& keys = job.problem.keyframes;
+}  // namespace throng
+
+namespace throng::formation {
+
+void write_data(const h5::Group& g, const Run& run) {
+  const Result& result = run.result;
+  const auto& keys = run.problem.keyframes;
   const std::uint64_t K = keys.size();
   const auto n = static_cast<std::uint64_t>(keys.front().positions.rows());
   const auto d = static_cast<std::uint64_t>(keys.front().positions.cols());
@@ -465,12 +412,6 @@ void write_formation_data(const h5::Group& throng_parameters, const FormationJob
   const h5::Group groups = g.create_group("groups");
   groups.write("name", names);
   groups.write("parent", parents, {parents.size()});
-  g.set_attribute("dimension", static_cast<std::int64_t>(d));
-  g.set_attribute("collision_enabled", static_cast<std::int64_t>(result.collision.ran));
-  if (result.collision.ran) {
-    g.set_attribute("collision_satisfied", static_cast<std::int64_t>(result.collision.satisfied));
-    g.set_attribute("collision_closest_m", result.collision.closest_m);
-  }
 }
 
-}  // namespace throng
+}  // namespace throng::formation

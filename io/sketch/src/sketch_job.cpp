@@ -1,4 +1,6 @@
 #include <throng/core/errors.h>
+#include <throng/core/format.h>
+#include <throng/sketch/schema.h>
 #include <throng/io/scene_config.h>
 #include <throng/io/sketch_job.h>
 
@@ -12,48 +14,6 @@ namespace {
 using sketch::EndOfPath;
 using sketch::Options;
 using sketch::Stroke;
-
-// Every option but the data (strokes, agent positions, obstacles) and the seed (--seed).
-void bind(OptionBinder& b, Options& o) {
-  b.field("smoothing_window", o.smoothing_window, Range::closed(0, 100000));
-  b.field("resample_spacing", o.resample_spacing_m, Range::non_negative());
-  b.field("speed_scale", o.speed_scale, Range::positive());
-  b.section("width", [&](OptionBinder& w) {
-    w.field("narrow", o.narrow_width_m, Range::non_negative());
-    w.field("wide", o.wide_width_m, Range::positive());
-  });
-  b.section("standard_distance", [&](OptionBinder& s) {
-    s.field("narrow", o.narrow_distance_m, Range::positive());
-    s.field("wide", o.wide_distance_m, Range::positive());
-  });
-  b.section("irregularity", [&](OptionBinder& i) {
-    i.field("gain", o.irregularity_gain, Range::non_negative());
-    i.field("max", o.irregularity_max, Range::positive());
-  });
-  b.section("agents", [&](OptionBinder& a) {
-    a.field("count", o.agent_count, Range::closed(1, 1e8));
-    a.field("radius", o.agent_radius_m, Range::positive());
-  });
-  b.field("follow_radius", o.follow_radius_m, Range::positive());
-  b.field("obstacle_distance", o.obstacle_distance_m, Range::non_negative());
-  b.field("slide_around_obstacles", o.slide_around_obstacles);
-  b.section("weights", [&](OptionBinder& w) {
-    w.field("trajectory", o.trajectory_weight, Range::positive());
-    w.field("avoid", o.avoid_weight, Range::non_negative());
-    w.field("obstacle", o.obstacle_weight, Range::non_negative());
-  });
-  b.field("time_step", o.time_step_s, Range::positive());
-  b.field("output_rate", o.output_rate_hz, Range::positive());
-  b.field("duration", o.duration_s, Range::non_negative());
-  b.field("max_duration", o.max_duration_s, Range::positive());
-  b.choice("end_of_path", o.end_of_path, {{"stop", EndOfPath::stop}, {"remove", EndOfPath::remove}});
-}
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // A stroke from a list of points [x, y] or [x, y, t] (`timed`: [x, y, t] required, times strictly increasing).
 // Numbers are finite (ConfigNode::as_doubles rejects NaN and infinities).
@@ -72,8 +32,8 @@ Stroke read_stroke(const ConfigNode& node, bool timed, const std::string& name) 
     stroke.points.emplace_back(v[0], v[1]);
     if (v.size() == 3) {
       if (timed && k > 0 && !(v[2] > stroke.times.back())) {
-        p.fail(name + " point " + std::to_string(k) + " is drawn at " + number(v[2]) + " s, not after " +
-               number(stroke.times.back()) + " s; the main line's times must increase strictly (they set the speed)");
+        p.fail(name + " point " + std::to_string(k) + " is drawn at " + with_digits(v[2], 6) + " s, not after " +
+               with_digits(stroke.times.back(), 6) + " s; the main line's times must increase strictly (they set the speed)");
       }
       stroke.times.push_back(v[2]);
     }
@@ -81,18 +41,11 @@ Stroke read_stroke(const ConfigNode& node, bool timed, const std::string& name) 
   return stroke;
 }
 
-YAML::Node flow(std::initializer_list<double> values) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (double v : values) n.push_back(yaml_number(v));
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
-
 YAML::Node stroke_yaml(const Stroke& s) {
   YAML::Node list(YAML::NodeType::Sequence);
   for (std::size_t k = 0; k < s.points.size(); ++k) {
-    list.push_back(s.times.empty() ? flow({s.points[k].x(), s.points[k].y()})
-                                   : flow({s.points[k].x(), s.points[k].y(), s.times[k]}));
+    list.push_back(s.times.empty() ? yaml_numbers({s.points[k].x(), s.points[k].y()})
+                                   : yaml_numbers({s.points[k].x(), s.points[k].y(), s.times[k]}));
   }
   return list;
 }
@@ -109,14 +62,16 @@ std::vector<double> flatten(const std::vector<Eigen::Vector2d>& points) {
 
 }  // namespace
 
-SketchJob read_sketch_job(const ConfigNode& job) {
-  SketchJob parsed;
+}  // namespace throng
+
+namespace throng::sketch {
+
+void read_job(const ConfigNode& job, Job& parsed) {
   Options& o = parsed.options;
-  OptionReader reader(job);
-  bind(reader, o);
+  read_options(job, describe, parsed);
   if (!(o.wide_width_m > o.narrow_width_m)) {
-    job.at("width").fail("wide (" + number(o.wide_width_m) + " m) must be greater than narrow (" +
-                         number(o.narrow_width_m) + " m)");
+    job.at("width").fail("wide (" + with_digits(o.wide_width_m, 6) + " m) must be greater than narrow (" +
+                         with_digits(o.narrow_width_m, 6) + " m)");
   }
 
   // Strokes: the main line with times, then the auxiliary lines.
@@ -129,16 +84,9 @@ SketchJob read_sketch_job(const ConfigNode& job) {
     parsed.drawing.strokes.push_back(read_stroke(lines[i], false, "auxiliary line " + std::to_string(i)));
   }
 
-  // The scene: obstacles only. read_scene also knows `region`, which sketch does not take; it reads a view of
-  // the job holding just the obstacles, so an unknown-key message never offers `region` as a known key.
+  // The scene: obstacles only (an unknown-key message never offers `region` as a known key).
   if (job.is_map() && job.yaml()["region"].IsDefined()) job.at("region").fail("sketch does not use a region");
-  if (auto obstacles = job.find("obstacles")) {
-    YAML::Node only(YAML::NodeType::Map);
-    only["obstacles"] = obstacles->yaml();
-    const ConfigNode scene_job(only, job.source());
-    parsed.scene = read_scene(scene_job);
-    scene_job.finish();
-  }
+  parsed.scene.obstacles = read_obstacles(job);
 
   // Given start positions: their number is the agent count.
   std::optional<ConfigNode> positions;
@@ -188,10 +136,9 @@ SketchJob read_sketch_job(const ConfigNode& job) {
       strokes.fail(std::string(e.what()) + " (the default agents.count)");
     }
   }
-  return parsed;
 }
 
-YAML::Node effective_sketch_job(const SketchJob& job) {
+YAML::Node effective_job(const Job& job) {
   YAML::Node out;
   YAML::Node strokes;
   strokes["main"] = stroke_yaml(job.drawing.strokes.front());
@@ -199,22 +146,20 @@ YAML::Node effective_sketch_job(const SketchJob& job) {
   for (std::size_t i = 1; i < job.drawing.strokes.size(); ++i) auxiliary.push_back(stroke_yaml(job.drawing.strokes[i]));
   strokes["auxiliary"] = auxiliary;
   out["strokes"] = strokes;
-  Options options = job.options;
-  OptionWriter writer(out);
-  bind(writer, options);
+  write_options(out, describe, job);
   if (!job.drawing.initial_positions.empty()) {
     YAML::Node positions(YAML::NodeType::Sequence);
-    for (const auto& p : job.drawing.initial_positions) positions.push_back(flow({p.x(), p.y()}));
+    for (const auto& p : job.drawing.initial_positions) positions.push_back(yaml_numbers({p.x(), p.y()}));
     out["agents"]["positions"] = positions;
   }
   write_scene(out, job.scene);
   return out;
 }
 
-void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
-                       const sketch::SimulationResult& result) {
-  const h5::Group sketch = throng_parameters.create_group("sketch");
-  const h5::Group strokes = sketch.create_group("strokes");
+void write_data(const h5::Group& record, const Run& run) {
+  const Drawing& drawing = run.drawing;
+  const SimulationResult& result = run.result;
+  const h5::Group strokes = record.create_group("strokes");
   // As given: [x, y, t] when the line has times (the main line always has), else [x, y] (an auxiliary line
   // drawn without them; the method does not use an auxiliary line's times).
   const auto write_stroke = [&](const std::string& name, const Stroke& stroke) {
@@ -228,14 +173,14 @@ void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
     }
     strokes.write(name, rows, {stroke.points.size(), 3});
   };
-  write_stroke("main", job.drawing.strokes.front());
-  for (std::size_t i = 1; i < job.drawing.strokes.size(); ++i) {
-    write_stroke("auxiliary_" + std::to_string(i - 1), job.drawing.strokes[i]);
+  write_stroke("main", drawing.strokes.front());
+  for (std::size_t i = 1; i < drawing.strokes.size(); ++i) {
+    write_stroke("auxiliary_" + std::to_string(i - 1), drawing.strokes[i]);
   }
 
   const sketch::Course& c = result.course;
   const std::uint64_t K = c.point_count();
-  const h5::Group course = sketch.create_group("course");
+  const h5::Group course = record.create_group("course");
   course.write("main", flatten(c.main), {K, 2});
   course.write("speed", c.speed, {K});
   course.write("width", c.width, {K});
@@ -245,7 +190,7 @@ void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
 
   const sketch::AgentParameters& a = result.agents;
   const std::uint64_t N = a.agent_count();
-  const h5::Group agents = sketch.create_group("agents");
+  const h5::Group agents = record.create_group("agents");
   agents.write("start", flatten(a.start), {N, 2});
   std::vector<double> weights(N * static_cast<std::uint64_t>(a.weights.cols()));
   for (Eigen::Index j = 0; j < a.weights.rows(); ++j) {
@@ -258,4 +203,4 @@ void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
   agents.write("arrival_time", result.arrival_time_s, {N});
 }
 
-}  // namespace throng
+}  // namespace throng::sketch

@@ -1,14 +1,15 @@
+// The tiling job (tiling_job.h): what the file says, read without building anything (the library is built when
+// the job runs: tiling/runner.h prepare()).
 #include <throng/core/errors.h>
-#include <throng/io/crowd_file.h>
-#include <throng/io/real_dataset.h>
+#include <throng/core/format.h>
 #include <throng/io/scene_config.h>
 #include <throng/io/tiling_job.h>
+#include <throng/tiling/schema.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
-#include <type_traits>
-#include <variant>
 
 namespace throng {
 namespace {
@@ -17,115 +18,7 @@ using namespace tiling;
 
 constexpr double deg = std::numbers::pi / 180.0;
 
-// Degrees in the file, radians in the options: a field that converts both ways.
-void degrees(OptionBinder& b, const char* key, double& radians, Range range) {
-  double d = std::round(radians / deg * 1e9) / 1e9;  // 15° stays 15, not 14.999999999999998
-  b.field(key, d, range);
-  radians = d * deg;
-}
-
-// Every option of the tiler but the data (library, keyframes, preference targets, zones) and the seed.
-void bind(OptionBinder& b, Options& o, LayoutOptions& layout) {
-  b.field("characters", o.characters, Range::closed(0, 1e9));
-  b.field("chains", o.chains, Range::closed(1, 100000));
-  b.section("limits", [&](OptionBinder& l) {
-    l.field("stretch", o.limits.stretch_m, Range::positive());
-    degrees(l, "bend", o.limits.bend_rad, Range{0, 180, true, false});
-    l.field("time_shift", o.limits.time_shift_s, Range::positive());
-    double rate = 1.0 / o.limits.frame_period_s;
-    l.field("frame_rate", rate, Range::positive());
-    o.limits.frame_period_s = 1.0 / rate;
-    l.field("bend_min_segment", o.limits.bend_min_segment_m, Range::non_negative());
-  });
-  b.section("match", [&](OptionBinder& m) {
-    m.field("distance", o.match.distance_m, Range::positive());
-    degrees(m, "angle", o.match.angle_rad, Range{0, 180, true, false});
-    m.field("time", o.match.time_s, Range::positive());
-  });
-  b.section("deformation", [&](OptionBinder& d) {
-    d.field("anchor_weight", o.deformation.anchor_weight, Range::positive());
-    d.field("deform_neighbours", o.deformation.deform_neighbours);
-    d.field("constraint_tolerance", o.deformation.constraint_tolerance, Range::positive());
-  });
-  b.section("annealing", [&](OptionBinder& a) {
-    a.field("alpha", o.annealing.alpha, Range::non_negative());
-    a.field("k", o.annealing.boltzmann_k, Range::positive());
-    a.field("t_max", o.annealing.t_max, Range::non_negative());
-    a.field("t_step", o.annealing.t_step, Range::non_negative());
-    a.field("max_failures", o.annealing.max_failures, Range::closed(0, 1e12));
-    a.field("max_proposals", o.annealing.max_proposals, Range::closed(1, 1e12));
-  });
-  b.section("search", [&](OptionBinder& s) {
-    s.section("jitter_start", [&](OptionBinder& j) {
-      j.field("distance", o.search.jitter_distance_start_m, Range::non_negative());
-      degrees(j, "angle", o.search.jitter_angle_start_rad, Range::closed(0, 180));
-      j.field("time", o.search.jitter_time_start_s, Range::non_negative());
-    });
-    s.section("jitter_end", [&](OptionBinder& j) {
-      j.field("distance", o.search.jitter_distance_end_m, Range::non_negative());
-      degrees(j, "angle", o.search.jitter_angle_end_rad, Range::closed(0, 180));
-      j.field("time", o.search.jitter_time_end_s, Range::non_negative());
-    });
-    s.field("attempts", o.search.jitter_attempts, Range::closed(1, 1e6));
-    s.field("max_steps", o.search.max_steps, Range::closed(0, 1e12));
-  });
-  b.section("index", [&](OptionBinder& i) {
-    i.field("cell", o.index.cell_m, Range::positive());
-    i.field("cell_time", o.index.cell_s, Range::positive());
-  });
-  b.field("obstacle_step", o.obstacle_step_m, Range::positive());
-  b.field("obstacle_step_time", o.obstacle_step_s, Range::positive());
-  b.section("output", [&](OptionBinder& out) {
-    out.field("frame_rate", layout.frame_rate_hz, Range::positive());
-    std::vector<double> repeat{static_cast<double>(layout.repeat[0]), static_cast<double>(layout.repeat[1]),
-                               static_cast<double>(layout.repeat[2])};
-    out.field("repeat", repeat);
-    if (repeat.size() != 3) throw ConfigError("output.repeat: expected 3 counts (x, y, t)");
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (!(repeat[a] >= 1 && repeat[a] <= 1000 && repeat[a] == std::floor(repeat[a]))) {
-        throw ConfigError("output.repeat: expected whole counts in [1, 1000], found " + std::to_string(repeat[a]));
-      }
-      layout.repeat[a] = static_cast<int>(repeat[a]);
-    }
-  });
-}
-
-// Sample rates above this make patches of tens of thousands of samples, beyond every deformation budget.
-constexpr Range sample_rates{0, 1000, true, false};
-
-void bind_builtin(OptionBinder& b, BuiltinOptions& o) {
-  b.field("sample_rate", o.sample_rate_hz, sample_rates);
-  b.field("radius", o.radius_m, Range::positive());
-  b.field("walk_speed", o.walk_speed_mps, Range::positive());
-  b.field("walk_duration", o.walk_duration_s, Range::positive());
-  b.field("wait_duration", o.wait_duration_s, Range::positive());
-  b.field("preference_per_character", o.preference_per_character, Range::positive());
-}
-
-void bind_real(OptionBinder& b, RealPatchOptions& o) {
-  b.field("sample_rate", o.sample_rate_hz, sample_rates);
-  b.field("max_gap", o.max_gap_s, Range::positive());
-  b.field("radius", o.radius_m, Range::positive());
-  b.field("standing_speed", o.standing_speed_mps, Range::positive());
-  b.field("clean_acceleration", o.clean_acceleration_mps2, Range::positive());
-  b.field("near", o.near_m, Range::positive());
-  b.field("min_contact", o.min_contact_s, Range::non_negative());
-  b.field("margin", o.margin_s, Range::non_negative());
-  b.field("reaction_min", o.reaction_min_mps2, Range::non_negative());
-  b.field("synchronicity_min", o.synchronicity_min, Range::closed(-1, 1));
-  b.field("single_duration", o.single_duration_s, Range::positive());
-  b.field("max_pair_patches", o.max_pair_patches, Range::closed(0, 1e6));
-  b.field("max_single_patches", o.max_single_patches, Range::closed(0, 1e6));
-  b.field("preference_per_character", o.preference_per_character, Range::positive());
-  b.field("prefix", o.prefix);
-}
-
-YAML::Node flow(std::initializer_list<double> values) {
-  YAML::Node n(YAML::NodeType::Sequence);
-  for (double v : values) n.push_back(yaml_number(v));
-  n.SetStyle(YAML::EmitterStyle::Flow);
-  return n;
-}
+YAML::Node flow(std::initializer_list<double> values) { return yaml_numbers(values); }
 
 std::vector<Zone> read_zones(const ConfigNode& job, const char* key) {
   std::vector<Zone> zones;
@@ -160,95 +53,78 @@ YAML::Node zones_yaml(const std::vector<Zone>& zones) {
   return list;
 }
 
-std::filesystem::path resolve(const ConfigNode& node, const std::string& given) {
-  const std::filesystem::path p(given);
-  if (p.is_absolute()) return p;
-  const std::filesystem::path beside = std::filesystem::path(node.source()).parent_path() / p;
-  if (std::filesystem::exists(beside)) return beside;
-  return p;
-}
-
-}  // namespace
-
-TilingJob read_tiling_job(const ConfigNode& job) {
-  TilingJob parsed;
-  OptionReader reader(job);
-  bind(reader, parsed.options, parsed.layout);
-
-  parsed.environment.scene = read_scene(job);
-  if (!parsed.environment.scene.region) job.fail("a tiling job needs `region: {min, max, time, periodic}`: the box to fill");
-  parsed.environment.sources = read_zones(job, "sources");
-  parsed.environment.sinks = read_zones(job, "sinks");
-
-  // The library: built-in patches, real patches, or both.
+// The library's keys: built-in names (known names and groups; nothing is built), the recorded crowd's dataset
+// (resolved against the job's folder), the preferences by type name.
+void read_library(const ConfigNode& job, TilingJob& parsed) {
   const ConfigNode lib = job.at("library");
+  LibrarySpec& spec = parsed.library;
   if (const auto builtin = lib.find("builtin")) {
-    for (const ConfigNode& n : builtin->elements()) parsed.builtin.push_back(n.as_string());
-    if (parsed.builtin.empty()) builtin->fail("give at least one built-in patch or group, or leave builtin out");
-  }
-  if (const auto o = lib.find("builtin_options")) {
-    OptionReader r(*o);
-    bind_builtin(r, parsed.builtin_options);
-  }
-  if (!parsed.builtin.empty()) {
-    std::vector<std::string> names;
-    const std::vector<std::string> all = builtin_patch_names();
-    for (const std::string& n : parsed.builtin) {
-      std::vector<std::string> members;
-      try {
-        members = std::find(all.begin(), all.end(), n) != all.end() ? std::vector<std::string>{n} : builtin_patch_group(n);
-      } catch (const ConfigError& e) {
-        lib.at("builtin").fail(std::string(e.what()) + " (built-in patch names are listed in throng/tiling/library.h)");
-      }
-      for (const std::string& m : members) {
-        if (std::find(names.begin(), names.end(), m) == names.end()) names.push_back(m);
-      }
-    }
+    for (const ConfigNode& n : builtin->elements()) spec.builtin.push_back(n.as_string());
+    if (spec.builtin.empty()) builtin->fail("give at least one built-in patch or group, or leave builtin out");
     try {
-      parsed.library = builtin_library(names, parsed.builtin_options);
+      (void)builtin_names(spec.builtin);
     } catch (const ConfigError& e) {
-      lib.at("builtin_options").fail(e.what());
+      builtin->fail(e.what());
     }
   }
-  std::size_t made_count = 0;  // real patches, the last types of the library
   if (const auto real = lib.find("real")) {
-    OptionReader r(*real);
-    bind_real(r, parsed.real_options);
-    const std::filesystem::path folder = resolve(*real, real->at("dataset").as_string());
-    parsed.real_dataset = std::filesystem::absolute(folder).lexically_normal().string();
-    const CrowdFile data = import_real_dataset(folder, RealDatasetOptions{});
-    parsed.credits = data.provenance.credits;
-    PatchLibrary made;
-    try {
-      made = patches_from_trajectories(data.motion, parsed.real_options);
-    } catch (const InputError& e) {
-      real->fail(std::string(e.what()) + " from " + folder.string());
-    }
-    made_count = made.types.size();
-    try {
-      merge_into(parsed.library, made);
-    } catch (const ConfigError& e) {
-      real->at("prefix").fail(e.what());
-    }
+    spec.real = true;
+    parsed.real_dataset = std::filesystem::absolute(real->at("dataset").as_path()).lexically_normal().string();
   }
-  if (parsed.library.types.empty()) lib.fail("give `builtin` patches, `real` patches, or both");
+  if (spec.builtin.empty() && !spec.real) lib.fail("give `builtin` patches, `real` patches, or both");
   if (const auto prefs = lib.find("preferences")) {
     for (const std::string& name : prefs->keys()) {
       const ConfigNode v = prefs->at(name);
-      std::size_t k = 0;
-      try {
-        k = parsed.library.find(name);
-      } catch (const ConfigError& e) {
-        v.fail(e.what());
-      }
       const double w = v.as_double();
       if (!(w > 0)) v.fail("a preference must be > 0");
-      parsed.library.types[k].preference = w;
-      parsed.preferences.emplace_back(name, w);
+      spec.preferences.emplace_back(name, w);
     }
   }
+}
 
-  // The preference function (Eq. 7).
+// A keyframe's patch must be in the library: checked here when the library holds built-in patches alone (their
+// names are known without building them), when the job runs otherwise.
+void check_patch_name(const ConfigNode& patch, const LibrarySpec& spec) {
+  if (spec.real) return;
+  const std::vector<std::string> names = builtin_names(spec.builtin);
+  const std::string name = patch.as_string();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    patch.fail("no patch type named '" + name + "' in the library (" + join_words(names) + ")");
+  }
+}
+
+void read_keyframes(const ConfigNode& job, TilingJob& parsed) {
+  const auto keys = job.find("keyframes");
+  if (!keys) return;
+  const Region& region = *parsed.environment.scene.region;
+  for (const ConfigNode& k : keys->elements()) {
+    KeyframeSpec key;
+    key.patch = k.at("patch").as_string();
+    check_patch_name(k.at("patch"), parsed.library);
+    const std::vector<double> p = k.at("position").as_doubles({2});
+    key.transform.translation = {p[0], p[1]};
+    if (const auto a = k.find("angle")) key.transform.angle = a->as_double() * deg;
+    key.transform.time_shift = k.at("time").as_double();
+    for (int a = 0; a < 2; ++a) {
+      if (region.periodic[static_cast<std::size_t>(a)]) continue;
+      if (!(p[static_cast<std::size_t>(a)] >= region.min[a] && p[static_cast<std::size_t>(a)] <= region.max[a])) {
+        std::ostringstream m;
+        m << "the keyframe's position " << "xy"[a] << " = " << p[static_cast<std::size_t>(a)] << " m is outside the region ["
+          << region.min[a] << ", " << region.max[a] << "]: a keyframed patch's centroid must lie inside";
+        k.at("position").fail(m.str());
+      }
+    }
+    if (!region.periodic[2] && !(key.transform.time_shift >= region.t0 && key.transform.time_shift <= region.t1)) {
+      std::ostringstream m;
+      m << "the keyframe's time " << key.transform.time_shift << " s is outside the region's [" << region.t0 << ", "
+        << region.t1 << "]: a keyframed patch's middle time must lie inside";
+      k.at("time").fail(m.str());
+    }
+    parsed.keyframes.push_back(key);
+  }
+}
+
+void read_preference(const ConfigNode& job, TilingJob& parsed) {
   if (const auto pref = job.find("preference")) {
     Preference& p = parsed.options.preference;
     if (const auto pos = pref->find("position")) {
@@ -280,37 +156,19 @@ TilingJob read_tiling_job(const ConfigNode& job) {
     }
   }
 
-  if (const auto keys = job.find("keyframes")) {
-    for (const ConfigNode& k : keys->elements()) {
-      Keyframe key;
-      try {
-        key.type = parsed.library.find(k.at("patch").as_string());
-      } catch (const ConfigError& e) {
-        k.at("patch").fail(e.what());
-      }
-      const std::vector<double> p = k.at("position").as_doubles({2});
-      key.transform.translation = {p[0], p[1]};
-      if (const auto a = k.find("angle")) key.transform.angle = a->as_double() * deg;
-      key.transform.time_shift = k.at("time").as_double();
-      const Region& region = *parsed.environment.scene.region;
-      for (int a = 0; a < 2; ++a) {
-        if (region.periodic[static_cast<std::size_t>(a)]) continue;
-        if (!(p[static_cast<std::size_t>(a)] >= region.min[a] && p[static_cast<std::size_t>(a)] <= region.max[a])) {
-          std::ostringstream m;
-          m << "the keyframe's position " << "xy"[a] << " = " << p[static_cast<std::size_t>(a)] << " m is outside the region ["
-            << region.min[a] << ", " << region.max[a] << "]: a keyframed patch's centroid must lie inside";
-          k.at("position").fail(m.str());
-        }
-      }
-      if (!region.periodic[2] && !(key.transform.time_shift >= region.t0 && key.transform.time_shift <= region.t1)) {
-        std::ostringstream m;
-        m << "the keyframe's time " << key.transform.time_shift << " s is outside the region's [" << region.t0 << ", "
-          << region.t1 << "]: a keyframed patch's middle time must lie inside";
-        k.at("time").fail(m.str());
-      }
-      parsed.keyframes.push_back(key);
-    }
-  }
+}
+
+}  // namespace
+
+void read_job(const ConfigNode& job, TilingJob& parsed) {
+  read_options(job, tiling::describe, static_cast<tiling::Job&>(parsed));
+  parsed.environment.scene = read_scene(job);
+  if (!parsed.environment.scene.region) job.fail("a tiling job needs `region: {min, max, time, periodic}`: the box to fill");
+  parsed.environment.sources = read_zones(job, "sources");
+  parsed.environment.sinks = read_zones(job, "sinks");
+  read_library(job, parsed);
+  read_preference(job, parsed);  // the preference function (Eq. 7)
+  read_keyframes(job, parsed);
   const Region& r = *parsed.environment.scene.region;
   for (std::size_t a = 0; a < 3; ++a) {
     if (parsed.layout.repeat[a] > 1 && !r.periodic[a]) {
@@ -323,71 +181,27 @@ TilingJob read_tiling_job(const ConfigNode& job) {
   } catch (const ConfigError& e) {
     job.fail(e.what());
   }
-
-  // Resources (tile.h), named by the keys that set them, before anything large is allocated.
-  std::size_t largest = 0;
-  double bytes = 0;
-  for (std::size_t k = 0; k < parsed.library.types.size(); ++k) {
-    bytes += deformation_bytes(parsed.library.types[k]);
-    if (parsed.library.types[k].sample_count() > parsed.library.types[largest].sample_count()) largest = k;
-  }
-  if (bytes > max_deformation_bytes) {
-    const PatchType& big = parsed.library.types[largest];
-    const bool real_patch = largest >= parsed.library.types.size() - made_count;
-    const char* key = real_patch ? "library.real.sample_rate" : "library.builtin_options.sample_rate";
-    const double rate = real_patch ? parsed.real_options.sample_rate_hz : parsed.builtin_options.sample_rate_hz;
-    std::ostringstream m;
-    m << key << " = " << rate << " Hz: the patch deformation systems would take " << bytes / 1e9 << " GB ('" << big.name
-      << "' alone has " << big.sample_count() << " samples), more than the " << max_deformation_bytes / 1e9
-      << " GB allowed; lower the sample rate";
-    if (const auto section = lib.find(real_patch ? "real" : "builtin_options")) {
-      if (const auto at = section->find("sample_rate")) at->fail(m.str());
-    }
-    lib.fail(m.str());
-  }
-  const double cells = index_cells(parsed.library, r, parsed.options);
-  if (cells > max_index_cells) {
-    std::ostringstream m;
-    m << "index.cell = " << parsed.options.index.cell_m << " m, index.cell_time = " << parsed.options.index.cell_s
-      << " s: the space-time index would have " << cells << " cells over the region and its margins, more than "
-      << max_index_cells << "; use larger cells or a smaller region";
-    if (const auto index = job.find("index")) index->fail(m.str());
-    job.at("region").fail(m.str());
-  }
   job.finish();
-  return parsed;
 }
 
-YAML::Node effective_tiling_job(const TilingJob& job) {
+YAML::Node effective_job(const TilingJob& job) {
   YAML::Node out(YAML::NodeType::Map);  // a map before the writer holds it (yaml-cpp nodes share only then)
-  TilingJob copy = job;
-  OptionWriter writer(out);
-  bind(writer, copy.options, copy.layout);
+  write_options(out, tiling::describe, static_cast<const tiling::Job&>(job));
   write_scene(out, job.environment.scene);
-  YAML::Node lib(YAML::NodeType::Map);
-  if (!job.builtin.empty()) {
+  const LibrarySpec& spec = job.library;
+  YAML::Node lib = out["library"];
+  if (!spec.builtin.empty()) {
     YAML::Node names(YAML::NodeType::Sequence);
-    for (const std::string& n : job.builtin) names.push_back(n);
+    for (const std::string& n : spec.builtin) names.push_back(n);
     names.SetStyle(YAML::EmitterStyle::Flow);
     lib["builtin"] = names;
-    YAML::Node bo(YAML::NodeType::Map);
-    OptionWriter bw(bo);
-    bind_builtin(bw, copy.builtin_options);
-    lib["builtin_options"] = bo;
   }
-  if (!job.real_dataset.empty()) {
-    YAML::Node ro(YAML::NodeType::Map);
-    OptionWriter rw(ro);
-    bind_real(rw, copy.real_options);
-    ro["dataset"] = job.real_dataset;
-    lib["real"] = ro;
-  }
-  if (!job.preferences.empty()) {
+  if (spec.real) lib["real"]["dataset"] = job.real_dataset;
+  if (!spec.preferences.empty()) {
     YAML::Node p;
-    for (const auto& [name, w] : job.preferences) p[name] = yaml_number(w);
+    for (const auto& [name, w] : spec.preferences) p[name] = yaml_number(w);
     lib["preferences"] = p;
   }
-  out["library"] = lib;
   const Preference& p = job.options.preference;
   if (!p.empty() || p.label_sigma != 1.0) {
     YAML::Node pref;
@@ -409,9 +223,9 @@ YAML::Node effective_tiling_job(const TilingJob& job) {
   }
   if (!job.keyframes.empty()) {
     YAML::Node keys(YAML::NodeType::Sequence);
-    for (const Keyframe& k : job.keyframes) {
+    for (const KeyframeSpec& k : job.keyframes) {
       YAML::Node n;
-      n["patch"] = job.library.types[k.type].name;
+      n["patch"] = k.patch;
       n["position"] = flow({k.transform.translation.x(), k.transform.translation.y()});
       n["angle"] = yaml_number(k.transform.angle / deg);
       n["time"] = yaml_number(k.transform.time_shift);
@@ -421,354 +235,6 @@ YAML::Node effective_tiling_job(const TilingJob& job) {
   }
   if (!job.environment.sources.empty()) out["sources"] = zones_yaml(job.environment.sources);
   if (!job.environment.sinks.empty()) out["sinks"] = zones_yaml(job.environment.sinks);
-  return out;
-}
-
-CheckOptions check_options_for(const Options& options) {
-  CheckOptions c;
-  c.limits = options.limits;
-  c.match = options.match;
-  c.obstacle_step_m = options.obstacle_step_m;
-  c.obstacle_step_s = options.obstacle_step_s;
-  return c;
-}
-
-namespace {
-
-void put_path(std::vector<double>& out, const Path& p) {
-  for (std::size_t s = 0; s < p.times.size(); ++s) out.insert(out.end(), {p.positions[s].x(), p.positions[s].y(), p.headings[s], p.times[s]});
-}
-
-}  // namespace
-
-Scene laid_scene(const Environment& environment, const LayoutOptions& layout) {
-  Scene out = environment.scene;
-  if (!out.region) return out;
-  Region& r = *out.region;
-  const Eigen::Vector3d L = periods(r);
-  r.max.x() = r.min.x() + layout.repeat[0] * (r.max.x() - r.min.x());
-  r.max.y() = r.min.y() + layout.repeat[1] * (r.max.y() - r.min.y());
-  r.t1 = r.t0 + layout.repeat[2] * (r.t1 - r.t0);
-  const std::vector<Obstacle>& own = environment.scene.obstacles;
-  for (int cx = 0; cx < layout.repeat[0]; ++cx) {
-    for (int cy = 0; cy < layout.repeat[1]; ++cy) {
-      if (cx == 0 && cy == 0) continue;
-      const Eigen::Vector2d shift(cx * L.x(), cy * L.y());
-      for (Obstacle o : own) {
-        if (o.is_moving()) {
-          for (PoseKey& k : o.motion) k.translation += shift;
-        } else {
-          std::visit(
-              [&](auto& shape) {
-                using S = std::decay_t<decltype(shape)>;
-                if constexpr (std::is_same_v<S, Circle>) {
-                  shape.center += shift;
-                } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
-                  for (Eigen::Vector2d& v : shape.vertices) v += shift;
-                } else {
-                  shape.a += shift;
-                  shape.b += shift;
-                }
-              },
-              o.shape);
-        }
-        if (!o.name.empty()) o.name += " (copy " + std::to_string(cx) + ", " + std::to_string(cy) + ")";
-        out.obstacles.push_back(std::move(o));
-      }
-    }
-  }
-  return out;
-}
-
-void write_tiling_data(const h5::Group& throng_parameters, const PatchLibrary& library, const TilingResult& result,
-                       const Environment& environment, const CheckOptions& check, const Characters& characters,
-                       const LayoutOptions& layout) {
-  const h5::Group g = throng_parameters.create_group("tiling");
-  // The library.
-  const h5::Group lib = g.create_group("library");
-  lib.write("pose_classes", library.pose_classes);
-  std::vector<std::string> names, labels;
-  std::vector<double> preference, radius, samples;
-  std::vector<std::int64_t> type_fragments{0}, fragments, constraints;
-  for (std::size_t k = 0; k < library.types.size(); ++k) {
-    const PatchType& t = library.types[k];
-    names.push_back(t.name);
-    labels.push_back(t.label);
-    preference.push_back(t.preference);
-    for (const Fragment& f : t.fragments) {
-      fragments.insert(fragments.end(), {f.is_character() ? 0 : 1, static_cast<std::int64_t>(f.entry_class),
-                                         static_cast<std::int64_t>(f.exit_class), static_cast<std::int64_t>(samples.size() / 4)});
-      radius.push_back(f.radius_m);
-      for (std::size_t s = 0; s < f.sample_count(); ++s) {
-        samples.insert(samples.end(), {f.positions[s].x(), f.positions[s].y(), f.headings[s], f.times[s]});
-      }
-    }
-    type_fragments.push_back(static_cast<std::int64_t>(radius.size()));
-    for (const InterpersonalConstraint& c : t.constraints) {
-      constraints.insert(constraints.end(), {static_cast<std::int64_t>(k), static_cast<std::int64_t>(c.fragment_a),
-                                             static_cast<std::int64_t>(c.sample_a), static_cast<std::int64_t>(c.fragment_b),
-                                             static_cast<std::int64_t>(c.sample_b)});
-    }
-  }
-  const auto K = static_cast<std::uint64_t>(library.types.size());
-  const auto F = static_cast<std::uint64_t>(radius.size());
-  lib.write("type_name", names);
-  lib.write("type_label", labels);
-  lib.write("type_preference", preference, {K});
-  lib.write("type_fragments", type_fragments, {K + 1});
-  lib.write("fragment", fragments, {F, 4});
-  lib.write("fragment_radius", radius, {F});
-  lib.write("samples", samples, {samples.size() / 4, 4});
-  lib.write("constraints", constraints, {constraints.size() / 5, 5});
-
-  // The tiling.
-  const Tiling& t = result.tiling;
-  const h5::Group inst = g.create_group("instances");
-  std::vector<std::int64_t> type;
-  std::vector<double> transform, paths;
-  std::vector<std::int32_t> keyframed;
-  for (const Instance& i : t.instances) {
-    type.push_back(static_cast<std::int64_t>(i.type));
-    transform.insert(transform.end(), {i.transform.translation.x(), i.transform.translation.y(), i.transform.angle, i.transform.time_shift});
-    keyframed.push_back(i.keyframed ? 1 : 0);
-    for (const Path& p : i.paths) put_path(paths, p);
-  }
-  const auto I = static_cast<std::uint64_t>(t.instances.size());
-  inst.write("type", type, {I});
-  inst.write("transform", transform, {I, 4});
-  inst.write("keyframed", keyframed, {I});
-  inst.write("paths", paths, {paths.size() / 4, 4}, h5::Layout{true});
-  std::vector<std::int64_t> conn;
-  for (const Connection& c : t.connections) {
-    conn.insert(conn.end(), {c.from.instance, c.from.fragment, c.to.instance, c.to.fragment, c.image[0], c.image[1], c.image[2]});
-  }
-  g.write("connections", conn, {t.connections.size(), 7});
-  const auto zones = [](const std::vector<Zone>& z) {
-    std::vector<double> v;
-    for (const Zone& zone : z) v.insert(v.end(), {zone.center.x(), zone.center.y(), zone.radius_m, zone.t0, zone.t1});
-    return v;
-  };
-  g.write("sources", zones(environment.sources), {environment.sources.size(), 5});
-  g.write("sinks", zones(environment.sinks), {environment.sinks.size(), 5});
-  std::vector<std::int64_t> pieces;
-  for (std::size_t a = 0; a < characters.pieces.size(); ++a) {
-    for (const AgentPiece& p : characters.pieces[a]) {
-      pieces.insert(pieces.end(), {static_cast<std::int64_t>(a), p.fragment.instance, p.fragment.fragment, p.copy[0], p.copy[1], p.copy[2]});
-    }
-  }
-  g.create_group("agents").write("pieces", pieces, {pieces.size() / 6, 6});
-  const Region& tile = *environment.scene.region;
-  g.write("region", std::vector<double>{tile.min.x(), tile.min.y(), tile.max.x(), tile.max.y(), tile.t0, tile.t1}, {6});
-  g.write("region_periodic", std::vector<std::int32_t>{tile.periodic[0], tile.periodic[1], tile.periodic[2]}, {3});
-  g.write("repeat", std::vector<std::int64_t>{layout.repeat[0], layout.repeat[1], layout.repeat[2]}, {3});
-  g.set_attribute("tile_obstacles", static_cast<std::int64_t>(environment.scene.obstacles.size()));
-
-  // Check options and the report.
-  g.set_attribute("limit_stretch", check.limits.stretch_m);
-  g.set_attribute("limit_bend", check.limits.bend_rad);
-  g.set_attribute("limit_time_shift", check.limits.time_shift_s);
-  g.set_attribute("limit_frame_period", check.limits.frame_period_s);
-  g.set_attribute("limit_bend_min_segment", check.limits.bend_min_segment_m);
-  g.set_attribute("match_distance", check.match.distance_m);
-  g.set_attribute("match_angle", check.match.angle_rad);
-  g.set_attribute("match_time", check.match.time_s);
-  g.set_attribute("obstacle_step", check.obstacle_step_m);
-  g.set_attribute("obstacle_step_time", check.obstacle_step_s);
-  const TilingReport& r = result.report;
-  g.set_attribute("dangling", static_cast<std::int64_t>(r.dangling));
-  g.set_attribute("instances", static_cast<std::int64_t>(r.instances));
-  g.set_attribute("characters", static_cast<std::int64_t>(r.characters));
-  g.set_attribute("connections", static_cast<std::int64_t>(r.connections));
-  g.set_attribute("chains", static_cast<std::int64_t>(r.chains.size()));
-  g.set_attribute("best_chain", static_cast<std::int64_t>(r.best_chain));
-}
-
-namespace {
-
-std::vector<double> doubles(const h5::Group& g, const std::string& name, std::uint64_t cols, std::uint64_t* rows = nullptr) {
-  h5::Array<double> a = g.read_doubles(name, cols ? 2 : 1);
-  if (cols && a.shape[1] != cols) throw InputError(g.where(name) + ": expected " + std::to_string(cols) + " columns");
-  if (rows) *rows = a.shape[0];
-  return std::move(a.values);
-}
-std::vector<std::int64_t> ints(const h5::Group& g, const std::string& name, std::uint64_t cols, std::uint64_t* rows = nullptr) {
-  h5::Array<std::int64_t> a = g.read_int64(name, cols ? 2 : 1);
-  if (cols && a.shape[1] != cols) throw InputError(g.where(name) + ": expected " + std::to_string(cols) + " columns");
-  if (rows) *rows = a.shape[0];
-  return std::move(a.values);
-}
-double attribute(const h5::Group& g, const std::string& name) {
-  const auto v = g.double_attribute(name);
-  if (!v) throw InputError(g.where() + ": missing attribute " + name);
-  return *v;
-}
-
-}  // namespace
-
-bool has_tiling_data(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) throw IoError(path.string() + ": no such file");
-  const h5::File file = h5::File::open(path);
-  if (!file.root().has("parameters")) return false;
-  const h5::Group parameters = file.root().open_group("parameters");
-  return parameters.has("throng") && parameters.open_group("throng").has("tiling");
-}
-
-TilingData read_tiling_data(const std::filesystem::path& path) {
-  TilingData out;
-  const CrowdFile crowd = read_crowd_file(path);
-  out.environment.scene = crowd.scene;
-  const h5::File file = h5::File::open(path);
-  const h5::Group params = open_throng_parameters(file);
-  if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
-  const h5::Group g = params.open_group("tiling");
-  // The tile (the scene's region is the laid extent) and its own obstacles (the first ones of the scene).
-  if (g.has("region")) {
-    const std::vector<double> r = doubles(g, "region", 0);
-    const std::vector<std::int32_t> p = g.read_int32("region_periodic", 1).values;
-    if (r.size() != 6 || p.size() != 3) throw InputError(g.where("region") + ": expected 6 bounds and 3 periodic flags");
-    out.environment.scene.region = Region{{r[0], r[1]}, {r[2], r[3]}, r[4], r[5], {p[0] != 0, p[1] != 0, p[2] != 0}};
-    const std::vector<std::int64_t> repeat = ints(g, "repeat", 0);
-    if (repeat.size() != 3) throw InputError(g.where("repeat") + ": expected 3 counts");
-    for (std::size_t a = 0; a < 3; ++a) {
-      if (repeat[a] < 1 || repeat[a] > 1000 || (repeat[a] > 1 && p[a] == 0)) {
-        throw InputError(g.where("repeat") + ": " + std::to_string(repeat[a]) + " copies on axis " + "xyt"[a] +
-                         ", expected 1 to 1000 and 1 on an axis that is not periodic");
-      }
-      out.repeat[a] = static_cast<int>(repeat[a]);
-    }
-  }
-  if (!out.environment.scene.region) throw InputError(path.string() + ": no region in the scene (not written by throng tile?)");
-  if (const auto own = g.double_attribute("tile_obstacles")) {
-    if (!(*own >= 0 && *own <= static_cast<double>(crowd.scene.obstacles.size()))) {
-      throw InputError(g.where() + ": tile_obstacles = " + std::to_string(*own) + " of " +
-                       std::to_string(crowd.scene.obstacles.size()) + " obstacles in the scene");
-    }
-    out.environment.scene.obstacles.resize(static_cast<std::size_t>(*own));
-  }
-  const h5::Group lib = g.open_group("library");
-  PatchLibrary& L = out.library;
-  L.pose_classes = lib.read_strings("pose_classes");
-  const std::vector<std::string> names = lib.read_strings("type_name"), labels = lib.read_strings("type_label");
-  const std::vector<double> preference = doubles(lib, "type_preference", 0);
-  const std::vector<std::int64_t> type_fragments = ints(lib, "type_fragments", 0);
-  std::uint64_t F = 0, S = 0, C = 0;
-  const std::vector<std::int64_t> fragments = ints(lib, "fragment", 4, &F);
-  const std::vector<double> radius = doubles(lib, "fragment_radius", 0);
-  const std::vector<double> samples = doubles(lib, "samples", 4, &S);
-  const std::vector<std::int64_t> constraints = ints(lib, "constraints", 5, &C);
-  const std::size_t K = names.size();
-  if (labels.size() != K || preference.size() != K || type_fragments.size() != K + 1 || radius.size() != F ||
-      type_fragments.back() != static_cast<std::int64_t>(F)) {
-    throw InputError(lib.where() + ": the library's datasets disagree in size");
-  }
-  const auto bad = [&](const std::string& what) { throw InputError(lib.where() + ": " + what); };
-  for (std::size_t k = 0; k < K; ++k) {
-    PatchType t;
-    t.name = names[k];
-    t.label = labels[k];
-    t.preference = preference[k];
-    if (type_fragments[k] < 0 || type_fragments[k + 1] < type_fragments[k]) bad("type_fragments not increasing");
-    for (auto f = static_cast<std::size_t>(type_fragments[k]); f < static_cast<std::size_t>(type_fragments[k + 1]); ++f) {
-      Fragment fr;
-      fr.kind = fragments[4 * f] == 0 ? FragmentKind::character : FragmentKind::prop;
-      fr.entry_class = static_cast<std::size_t>(fragments[4 * f + 1]);
-      fr.exit_class = static_cast<std::size_t>(fragments[4 * f + 2]);
-      fr.radius_m = radius[f];
-      const std::int64_t first = fragments[4 * f + 3];
-      const std::int64_t last = f + 1 < F ? fragments[4 * (f + 1) + 3] : static_cast<std::int64_t>(S);
-      if (first < 0 || last > static_cast<std::int64_t>(S) || last < first) bad("fragment sample ranges out of order");
-      for (auto s = static_cast<std::size_t>(first); s < static_cast<std::size_t>(last); ++s) {
-        fr.positions.emplace_back(samples[4 * s], samples[4 * s + 1]);
-        fr.headings.push_back(samples[4 * s + 2]);
-        fr.times.push_back(samples[4 * s + 3]);
-      }
-      t.fragments.push_back(std::move(fr));
-    }
-    L.types.push_back(std::move(t));
-  }
-  for (std::size_t c = 0; c < C; ++c) {
-    const auto k = static_cast<std::size_t>(constraints[5 * c]);
-    if (k >= K) bad("a constraint names a missing type");
-    L.types[k].constraints.push_back({static_cast<std::size_t>(constraints[5 * c + 1]), static_cast<std::size_t>(constraints[5 * c + 2]),
-                                      static_cast<std::size_t>(constraints[5 * c + 3]), static_cast<std::size_t>(constraints[5 * c + 4])});
-  }
-  L.validate(path.string() + " library");
-
-  const h5::Group inst = g.open_group("instances");
-  std::uint64_t I = 0, P = 0;
-  const std::vector<std::int64_t> type = ints(inst, "type", 0);
-  const std::vector<double> transform = doubles(inst, "transform", 4, &I);
-  const std::vector<std::int32_t> keyframed = inst.read_int32("keyframed", 1).values;
-  const std::vector<double> paths = doubles(inst, "paths", 4, &P);
-  if (type.size() != I || keyframed.size() != I) throw InputError(inst.where() + ": the instance datasets disagree in size");
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < I; ++i) {
-    Instance x;
-    if (type[i] < 0 || static_cast<std::size_t>(type[i]) >= K) {
-      throw InputError(inst.where("type") + ": instance " + std::to_string(i) + " names type " + std::to_string(type[i]) +
-                       " of " + std::to_string(K));
-    }
-    x.type = static_cast<std::size_t>(type[i]);
-    x.transform.translation = {transform[4 * i], transform[4 * i + 1]};
-    x.transform.angle = transform[4 * i + 2];
-    x.transform.time_shift = transform[4 * i + 3];
-    x.keyframed = keyframed[i] != 0;
-    for (const Fragment& f : L.types[x.type].fragments) {
-      if (at + f.sample_count() > P) throw InputError(inst.where("paths") + ": fewer samples than the instances' patches have");
-      Path p;
-      for (std::size_t s = 0; s < f.sample_count(); ++s, ++at) {
-        p.positions.emplace_back(paths[4 * at], paths[4 * at + 1]);
-        p.headings.push_back(paths[4 * at + 2]);
-        p.times.push_back(paths[4 * at + 3]);
-      }
-      x.paths.push_back(std::move(p));
-    }
-    out.tiling.instances.push_back(std::move(x));
-  }
-  if (at != P) throw InputError(inst.where("paths") + ": more samples than the instances' patches have");
-  std::uint64_t NC = 0;
-  const std::vector<std::int64_t> conn = ints(g, "connections", 7, &NC);
-  for (std::size_t c = 0; c < NC; ++c) {
-    const std::int64_t* v = conn.data() + 7 * c;
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[3] < 0) throw InputError(g.where("connections") + ": negative index in row " + std::to_string(c));
-    out.tiling.connections.push_back({{static_cast<std::uint32_t>(v[0]), static_cast<std::uint32_t>(v[1])},
-                                      {static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3])},
-                                      {static_cast<int>(v[4]), static_cast<int>(v[5]), static_cast<int>(v[6])}});
-  }
-  const auto zones = [&](const std::string& name) {
-    std::uint64_t n = 0;
-    const std::vector<double> v = doubles(g, name, 5, &n);
-    std::vector<Zone> z;
-    for (std::size_t k = 0; k < n; ++k) z.push_back({{v[5 * k], v[5 * k + 1]}, v[5 * k + 2], v[5 * k + 3], v[5 * k + 4]});
-    return z;
-  };
-  out.environment.sources = zones("sources");
-  out.environment.sinks = zones("sinks");
-  std::uint64_t NP = 0;
-  const std::vector<std::int64_t> pieces = ints(g.open_group("agents"), "pieces", 6, &NP);
-  out.pieces.resize(crowd.motion.agent_count());
-  for (std::size_t k = 0; k < NP; ++k) {
-    const std::int64_t* v = pieces.data() + 6 * k;
-    if (v[0] < 0 || static_cast<std::size_t>(v[0]) >= out.pieces.size() || v[1] < 0 ||
-        static_cast<std::size_t>(v[1]) >= out.tiling.instances.size() || v[2] < 0 ||
-        static_cast<std::size_t>(v[2]) >= out.tiling.instances[static_cast<std::size_t>(v[1])].paths.size()) {
-      throw InputError(g.where("agents/pieces") + ": row " + std::to_string(k) + " names a missing agent, instance or fragment");
-    }
-    out.pieces[static_cast<std::size_t>(v[0])].push_back(
-        {{static_cast<std::uint32_t>(v[1]), static_cast<std::uint32_t>(v[2])},
-         {static_cast<int>(v[3]), static_cast<int>(v[4]), static_cast<int>(v[5])}});
-  }
-  CheckOptions& c = out.check;
-  c.limits.stretch_m = attribute(g, "limit_stretch");
-  c.limits.bend_rad = attribute(g, "limit_bend");
-  c.limits.time_shift_s = attribute(g, "limit_time_shift");
-  c.limits.frame_period_s = attribute(g, "limit_frame_period");
-  c.limits.bend_min_segment_m = attribute(g, "limit_bend_min_segment");
-  c.match.distance_m = attribute(g, "match_distance");
-  c.match.angle_rad = attribute(g, "match_angle");
-  c.match.time_s = attribute(g, "match_time");
-  c.obstacle_step_m = attribute(g, "obstacle_step");
-  c.obstacle_step_s = attribute(g, "obstacle_step_time");
   return out;
 }
 

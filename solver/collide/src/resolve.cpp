@@ -1,11 +1,13 @@
 // The repair loop of collide.h: detect, choose disjoint pushable contacts, push, deform each touched trajectory.
 #include "track_solver.h"
 
+#include <throng/core/timer.h>
 #include <throng/collide/collide.h>
+#include <throng/collide/schema.h>
 #include <throng/collide/contact_tracker.h>
 #include <throng/core/errors.h>
+#include <throng/core/format.h>
 #include <throng/core/parallel.h>
-#include <throng/linalg/mpi.h>
 
 #include <algorithm>
 #include <chrono>
@@ -29,7 +31,6 @@ using Displacement = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 // segment), 0.5 m 50-75 % slower.
 constexpr double tracker_skin = 0.15;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // One contact interval across iterations: (kind, agent or a, b or obstacle, interval).
 using ContactKey = std::tuple<int, std::size_t, std::size_t, std::size_t>;
@@ -53,9 +54,10 @@ struct ContactHistory {
 
 class Repair {
  public:
-  Repair(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options)
+  Repair(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options,
+         const Communicator& communicator)
       : input_(crowd), crowd_(crowd), obstacles_(obstacles), options_(options), frames_(crowd.frame_count()),
-        agents_(crowd.agent_count()), ranks_(mpi::size()), rank_(mpi::rank()) {
+        agents_(crowd.agent_count()), communicator_(communicator), ranks_(communicator.size()), rank_(communicator.rank()) {
     make_tracks();
   }
 
@@ -125,7 +127,7 @@ class Repair {
     report.min_obstacle_gap = gaps.obstacle;
     report.detect_seconds += seconds_since(start);
     report.moved_agents = static_cast<std::size_t>(std::count(moved_ever.begin(), moved_ever.end(), 1));
-    report.factorizations = static_cast<int>(ranks_ > 1 ? mpi::sum(factorizations_) : factorizations_);
+    report.factorizations = static_cast<int>(ranks_ > 1 ? communicator_.sum(factorizations_) : factorizations_);
     report.max_displacement = largest_displacement();
     report.input_motion = motion_stats(input_);
     report.output_motion = motion_stats(crowd_);
@@ -551,7 +553,7 @@ class Repair {
         for (Eigen::Index j = 0; j < d.rows(); ++j) message.insert(message.end(), {d(j, 0), d(j, 1)});
       }
     }
-    const std::vector<std::vector<double>> all = mpi::all_gather(message);
+    const std::vector<std::vector<double>> all = communicator_.all_gather(message);
     for (std::size_t r = 0; r < all.size(); ++r) {
       const std::vector<double>& m = all[r];
       if (m.at(0) != 0.0) {
@@ -573,6 +575,7 @@ class Repair {
   const std::vector<Obstacle>& obstacles_;
   Options options_;
   std::size_t frames_, agents_;
+  const Communicator& communicator_;
   int ranks_, rank_;
   std::vector<Track> tracks_;
   std::vector<int> track_of_;  // agent * frames + frame → track, −1 when absent
@@ -582,14 +585,7 @@ class Repair {
   double factorizations_ = 0;  // tracks factorised on this rank
 };
 
-std::string number(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
-
-std::string gap(double v) { return std::isfinite(v) ? number(v) + " m" : "none within 16 m"; }
+std::string gap(double v) { return std::isfinite(v) ? with_digits(v, 4) + " m" : "none within 16 m"; }
 
 }  // namespace
 
@@ -627,29 +623,14 @@ MotionStats motion_stats(const CrowdMotion& crowd) {
   return out;
 }
 
-void validate(const Options& o) {
-  auto fail = [](const std::string& m) { throw ConfigError(m); };
-  if (!(std::isfinite(o.margin) && o.margin >= 0)) fail("margin " + number(o.margin) + ": expected a length ≥ 0");
-  if (!(o.push_fraction > 0 && o.push_fraction <= 1)) fail("push_fraction " + number(o.push_fraction) + ": expected 0 < value ≤ 1");
-  if (o.max_iterations < 1) fail("max_iterations 0: expected at least 1");
-  if (!(std::isfinite(o.spread) && o.spread >= 1)) fail("spread " + number(o.spread) + ": expected a frame count ≥ 1");
-  if (!(std::isfinite(o.min_feature_length) && o.min_feature_length > 0)) {
-    fail("min_feature_length " + number(o.min_feature_length) + ": expected > 0");
-  }
-  if (!(o.max_displacement > 0)) fail("max_displacement " + number(o.max_displacement) + ": expected a length > 0");
-  if (!(std::isfinite(o.velocity_weight) && o.velocity_weight >= 0)) {
-    fail("velocity_weight " + number(o.velocity_weight) + ": expected a weight ≥ 0");
-  }
-  if (o.contact_patience < 1) fail("contact_patience 0: expected at least 1");
-  if (o.stall_iterations < 1) fail("stall_iterations 0: expected at least 1");
-}
+void validate(const Options& o) { check_options(describe, o, "collide option "); }
 
 Result resolve_collisions(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options,
-                          Progress& progress) {
+                          Progress& progress, const Communicator& communicator) {
   validate(options);
   crowd.validate("collide input");
   for (std::size_t o = 0; o < obstacles.size(); ++o) validate(obstacles[o], "obstacle " + std::to_string(o));
-  Repair repair(crowd, obstacles, options);
+  Repair repair(crowd, obstacles, options, communicator);
   return repair.run(progress);
 }
 

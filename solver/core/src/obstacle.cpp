@@ -203,4 +203,27 @@ void validate(const Obstacle& obstacle, const std::string& what) {
   }
 }
 
+void move_rigidly(Obstacle& obstacle, const Eigen::Isometry2d& motion, double rotation) {
+  if (obstacle.is_moving()) {
+    for (PoseKey& key : obstacle.motion) {
+      key.translation = motion * key.translation;
+      key.angle += rotation;
+    }
+    return;
+  }
+  std::visit(
+      [&](auto& shape) {
+        using S = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<S, Circle>) {
+          shape.center = motion * shape.center;
+        } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
+          for (Eigen::Vector2d& v : shape.vertices) v = motion * v;
+        } else {
+          shape.a = motion * shape.a;
+          shape.b = motion * shape.b;
+        }
+      },
+      obstacle.shape);
+}
+
 }  // namespace throng

@@ -2,8 +2,11 @@
 #include "resample.h"
 #include "systems.h"
 
+#include <throng/core/timer.h>
 #include <throng/core/errors.h>
+#include <throng/core/union_find.h>
 #include <throng/edit/edit.h>
+#include <throng/edit/schema.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/least_squares.h>
 
@@ -22,47 +25,12 @@ using Index = Eigen::Index;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Disjoint sets over graph vertices (path halving, union by index: deterministic).
-class Components {
- public:
-  explicit Components(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  std::size_t root(std::size_t v) {
-    while (parent_[v] != v) v = parent_[v] = parent_[parent_[v]];
-    return v;
-  }
-  void join(std::size_t a, std::size_t b) {
-    a = root(a);
-    b = root(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<std::size_t> parent_;
-};
+using Components = UnionFind;  // over graph vertices
 
 }  // namespace
 
-void validate(const Options& o) {
-  for (auto [name, value] : {std::pair{"alpha", o.alpha}, std::pair{"beta", o.beta}, std::pair{"alpha_prime", o.alpha_prime},
-                             std::pair{"beta_prime", o.beta_prime}}) {
-    if (!std::isfinite(value) || value < 0) {
-      throw ConfigError(std::string(name) + " " + std::to_string(value) + ": expected a finite weight ≥ 0");
-    }
-  }
-  if (!std::isfinite(o.features.min_length) || o.features.min_length <= 0) {
-    throw ConfigError("features.min_length " + std::to_string(o.features.min_length) + ": expected a length > 0 in metres");
-  }
-  if (!(o.features.degenerate_ratio >= 0 && o.features.degenerate_ratio < 1)) {
-    throw ConfigError("features.degenerate_ratio " + std::to_string(o.features.degenerate_ratio) + ": expected [0, 1)");
-  }
-  if (o.local.parts < 0) throw ConfigError("local.parts " + std::to_string(o.local.parts) + ": expected ≥ 0 (0: global solves)");
-  if (o.local.halo < -1) throw ConfigError("local.halo " + std::to_string(o.local.halo) + ": expected ≥ 0, or −1 for every connected part");
-  if (o.local.max_cached_regions < 1) {
-    throw ConfigError("local.max_cached_regions " + std::to_string(o.local.max_cached_regions) + ": expected ≥ 1");
-  }
-}
+void validate(const Options& o) { check_options(describe, o, ""); }
 
 struct Editor::State {
   State(const Options& o) : options(o), step1_solver(o.solver), step2_solver(o.solver) {}
@@ -333,18 +301,25 @@ const FeatureSet& Editor::features() const noexcept { return state_->features; }
 const Report& Editor::report() const noexcept { return state_->report; }
 const Options& Editor::options() const noexcept { return state_->options; }
 
-Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request) {
+Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request, Progress* progress) {
+  NoProgress quiet;
+  Progress& p = progress ? *progress : quiet;
   Result result;
   if (options.local.parts > 0) {
-    result = edit_locally(crowd, options, request);
+    result = edit_locally(crowd, options, request, &p);
   } else {
+    p.update(0.0, "edit: graph");
     Editor editor(crowd, options, request);
+    p.update(0.2, "edit: factorise");
     editor.precompute();
+    p.update(0.8, "edit: solve");
     const auto& samples = editor.deform(request);
+    p.update(0.95, "edit: resample");
     const Clip& clip = editor.graph().clip;
-    result = {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
+    result = {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames, std::nullopt};
   }
   result.report.max_output_residual = max_request_residual(crowd, result.crowd, result.first_frame, request);
+  p.update(1.0, "edit: done");
   return result;
 }
 

@@ -1,6 +1,7 @@
 // deform_with_features: the Editor's two least-squares steps (systems.h) over caller-made features and pins.
 #include "systems.h"
 
+#include <throng/core/timer.h>
 #include <throng/core/errors.h>
 #include <throng/edit/feature_deformation.h>
 #include <throng/linalg/least_squares.h>
@@ -16,7 +17,6 @@ using Index = Eigen::Index;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "resample.h"
 #include "systems.h"
 
+#include <throng/core/timer.h>
 #include <throng/core/errors.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/least_squares.h>
@@ -23,7 +24,6 @@ using Index = Eigen::Index;
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // One factorised region: the subproblem over R's unknowns with its boundary and handles pinned.
 //   vertices  local → graph vertex: R (increasing), then the boundary B (increasing)
@@ -580,11 +580,16 @@ const Partition& LocalEditor::partition() const noexcept { return state_->partit
 const Report& LocalEditor::report() const noexcept { return state_->report; }
 const Options& LocalEditor::options() const noexcept { return state_->options; }
 
-Result edit_locally(const CrowdMotion& crowd, const Options& options, const Request& request) {
+Result edit_locally(const CrowdMotion& crowd, const Options& options, const Request& request, Progress* progress) {
+  NoProgress quiet;
+  Progress& p = progress ? *progress : quiet;
+  p.update(0.0, "edit: graph and partition");
   LocalEditor editor(crowd, options, request);
+  p.update(0.3, "edit: local solve");
   const auto& samples = editor.deform(request);
+  p.update(0.95, "edit: resample");
   const Clip& clip = editor.graph().clip;
-  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames};
+  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames, editor.boundary_step()};
 }
 
 }  // namespace throng::edit

@@ -1,5 +1,6 @@
 #include "adjacency.h"
 
+#include <throng/core/union_find.h>
 #include <throng/core/errors.h>
 #include <throng/graph/delaunay.h>
 
@@ -73,12 +74,7 @@ std::vector<std::array<int, 2>> cocircular_chords(const Eigen::Ref<const Eigen::
       const int a = triangles[t][static_cast<std::size_t>(e)], b = triangles[t][static_cast<std::size_t>((e + 1) % 3)];
       faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(t));
     }
-  std::vector<int> parent(triangles.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) x = parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-    return x;
-  };
+  UnionFind sets(triangles.size());
   bool any = false;
   for (const auto& [edge, faces] : faces_of_edge) {
     if (faces.size() != 2) continue;
@@ -96,8 +92,7 @@ std::vector<std::array<int, 2>> cocircular_chords(const Eigen::Ref<const Eigen::
       scale += v.norm();
     }
     if (std::abs(m.determinant()) <= 1e-9 * lengths * scale) {
-      const int a = root(faces[0]), b = root(faces[1]);
-      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+      sets.join(static_cast<std::size_t>(faces[0]), static_cast<std::size_t>(faces[1]));
       any = true;
     }
   }
@@ -106,7 +101,7 @@ std::vector<std::array<int, 2>> cocircular_chords(const Eigen::Ref<const Eigen::
   std::map<int, std::vector<int>> cluster_vertices;
   std::map<int, int> cluster_size;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const int r = root(static_cast<int>(t));
+    const int r = static_cast<int>(sets.root(t));
     ++cluster_size[r];
     for (int v : triangles[t]) cluster_vertices[r].push_back(v);
   }

@@ -9,7 +9,6 @@
 #include "spectral_group.h"
 #include "spline.h"
 
-#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 
 #include <algorithm>
@@ -189,7 +188,6 @@ Group root_of_everyone(int n) {
 }  // namespace
 
 Result animate_formation(const Problem& input, const Options& options, Progress& progress) {
-  (void)choose_blas_kernels();  // the dense eigen-analyses and products (core/blas_kernels.h)
   check_options(options);
   check_problem(input);
   const int n = static_cast<int>(input.keyframes[0].positions.rows());

@@ -2,6 +2,7 @@
 
 #include "dense.h"
 
+#include <throng/core/union_find.h>
 #include <throng/core/errors.h>
 
 #include <algorithm>
@@ -31,25 +32,14 @@ struct Plane {
 // Groups of indices coupled (directly or through others) by entries of w above `level`.
 std::vector<std::vector<int>> coupled_clusters(const Eigen::MatrixXd& w, double level) {
   const int n = static_cast<int>(w.rows());
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int x) {
-    while (parent[static_cast<std::size_t>(x)] != x) {
-      parent[static_cast<std::size_t>(x)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(x)])];
-      x = parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  };
+  UnionFind sets(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < j; ++i) {
-      if (std::abs(w(i, j)) > level || std::abs(w(j, i)) > level) {
-        const int a = root(i), b = root(j);
-        if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-      }
+      if (std::abs(w(i, j)) > level || std::abs(w(j, i)) > level) sets.join(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
     }
   }
   std::vector<std::vector<int>> clusters(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) clusters[static_cast<std::size_t>(root(i))].push_back(i);
+  for (int i = 0; i < n; ++i) clusters[sets.root(static_cast<std::size_t>(i))].push_back(i);
   clusters.erase(std::remove_if(clusters.begin(), clusters.end(), [](const auto& c) { return c.empty(); }),
                  clusters.end());
   return clusters;

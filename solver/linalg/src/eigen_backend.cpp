@@ -10,7 +10,6 @@
 #include "backends.h"
 #include "blas_threads.h"
 
-#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 
 #include <Eigen/CholmodSupport>
@@ -397,7 +396,6 @@ class EigenSpdSolver final : public SpdSolver {
 }  // namespace
 
 std::unique_ptr<SpdSolver> make_eigen_solver(const SolverOptions& options) {
-  (void)choose_blas_kernels();  // the fast kernels for CHOLMOD's dense fronts (core/blas_kernels.h)
   return std::make_unique<EigenSpdSolver>(options);
 }
 

@@ -1,3 +1,4 @@
+#include <throng/core/timer.h>
 #include <throng/linalg/least_squares.h>
 
 #include <Eigen/Cholesky>
@@ -16,9 +17,6 @@ namespace {
 using Index = Eigen::Index;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Schur complement pivots below this fraction of the largest are rounding: those constraint rows are redundant
 // (linear combinations of others). Exact redundancy leaves ~1e-16 with a direct backend and ~ the iterative

@@ -49,7 +49,6 @@
 #include "petsc_check.h"
 #include "petsc_layout.h"
 
-#include <throng/core/blas_kernels.h>
 #include <throng/core/errors.h>
 #include <throng/linalg/mpi.h>
 
@@ -428,7 +427,6 @@ class PetscSpdSolver final : public SpdSolver {
 }  // namespace
 
 std::unique_ptr<SpdSolver> make_petsc_solver(const SolverOptions& options) {
-  (void)choose_blas_kernels();  // PETSc's dense kernels (core/blas_kernels.h)
   return std::make_unique<PetscSpdSolver>(options);
 }
 

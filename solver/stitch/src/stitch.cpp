@@ -4,6 +4,7 @@
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
 #include <throng/linalg/spd_solver.h>
+#include <throng/stitch/schema.h>
 #include <throng/stitch/stitch.h>
 #include <throng/timewarp/spline.h>
 
@@ -49,24 +50,7 @@ Feature averaged(const Feature& a, const Feature& b) {
 
 }  // namespace
 
-void validate(const Options& o) {
-  if (o.sample_step == 0) throw ConfigError("sample_step is 0: expected a positive number of frames");
-  if (!(std::isfinite(o.blend_window) && o.blend_window >= 0)) {
-    throw ConfigError("blend_window " + detail::number(o.blend_window) + ": expected a duration ≥ 0 in seconds (0: automatic)");
-  }
-  if (!(std::isfinite(o.features.min_length) && o.features.min_length > 0)) {
-    throw ConfigError("features.min_length " + detail::number(o.features.min_length) + ": expected a length > 0 in metres");
-  }
-  if (!(o.features.degenerate_ratio >= 0 && o.features.degenerate_ratio < 1)) {
-    throw ConfigError("features.degenerate_ratio " + detail::number(o.features.degenerate_ratio) + ": expected [0, 1)");
-  }
-  for (auto [name, value] : {std::pair{"alpha", o.weights.alpha}, std::pair{"beta", o.weights.beta},
-                             std::pair{"alpha_prime", o.weights.alpha_prime}, std::pair{"beta_prime", o.weights.beta_prime}}) {
-    if (!(std::isfinite(value) && value >= 0)) {
-      throw ConfigError(std::string(name) + " " + detail::number(value) + ": expected a finite weight ≥ 0");
-    }
-  }
-}
+void validate(const Options& o) { check_options(describe, o, ""); }
 
 double blend_weight(double distance, double window) noexcept {
   if (!(window > 0) || !detail::inside_window(distance, window)) return 0.0;

@@ -21,18 +21,6 @@ Eigen::Isometry2d rigid_motion(double rotation, const Eigen::Vector2d& pivot, co
   return m;
 }
 
-struct ShapeMover {
-  const Eigen::Isometry2d& motion;
-  void operator()(Circle& c) const { c.center = motion * c.center; }
-  void operator()(ConvexPolygon& p) const {
-    for (auto& v : p.vertices) v = motion * v;  // a rotation keeps the counter-clockwise order
-  }
-  void operator()(Wall& w) const {
-    w.a = motion * w.a;
-    w.b = motion * w.b;
-  }
-};
-
 }  // namespace
 
 void validate(const TransformOptions& o) {
@@ -98,16 +86,8 @@ void transform(CrowdMotion& crowd, Scene& scene, const TransformOptions& o) {
   if (o.species) std::fill(crowd.species.begin(), crowd.species.end(), *o.species);
 
   for (Obstacle& obstacle : scene.obstacles) {
-    if (!obstacle.is_moving()) {
-      std::visit(ShapeMover{motion}, obstacle.shape);
-      continue;
-    }
-    // World pose after = motion ∘ pose: translation ↦ motion · translation, angle ↦ angle + rotation.
-    for (PoseKey& key : obstacle.motion) {
-      key.time = retime(key.time);
-      key.translation = motion * key.translation;
-      key.angle += o.rotation;
-    }
+    move_rigidly(obstacle, motion, o.rotation);
+    for (PoseKey& key : obstacle.motion) key.time = retime(key.time);
   }
   if (scene.region) {
     Region& r = *scene.region;

@@ -1,15 +1,10 @@
 #include "phases.h"
 
+#include <throng/core/timer.h>
+
 #include <chrono>
 
 namespace throng::tiling {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain, const Tick& tick) {
   ChainResult out;

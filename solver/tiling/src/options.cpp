@@ -1,4 +1,5 @@
 #include <throng/tiling/options.h>
+#include <throng/tiling/schema.h>
 
 #include <throng/core/errors.h>
 
@@ -16,37 +17,18 @@ void require(bool ok, const char* name, double value, const char* expected) {
 }
 
 void positive(const char* name, double v) { require(v > 0 && std::isfinite(v), name, v, "a finite value > 0"); }
-void non_negative(const char* name, double v) { require(v >= 0 && std::isfinite(v), name, v, "a finite value ≥ 0"); }
 
 }  // namespace
 
 void validate(const Options& o) {
-  positive("limits.stretch", o.limits.stretch_m);
-  positive("limits.bend", o.limits.bend_rad);
-  positive("limits.time_shift", o.limits.time_shift_s);
-  positive("limits.frame_rate (its period)", o.limits.frame_period_s);
-  non_negative("limits.bend_min_segment", o.limits.bend_min_segment_m);
-  positive("match.distance", o.match.distance_m);
-  positive("match.angle", o.match.angle_rad);
-  require(o.match.angle_rad <= 3.1416, "match.angle (radians)", o.match.angle_rad, "at most π (180°)");
-  positive("match.time", o.match.time_s);
-  positive("deformation.anchor_weight", o.deformation.anchor_weight);
-  positive("deformation.constraint_tolerance", o.deformation.constraint_tolerance);
-  non_negative("annealing.alpha", o.annealing.alpha);
-  positive("annealing.k", o.annealing.boltzmann_k);
-  non_negative("annealing.t_max", o.annealing.t_max);
-  non_negative("annealing.t_step", o.annealing.t_step);
-  require(o.annealing.max_proposals >= 1, "annealing.max_proposals", static_cast<double>(o.annealing.max_proposals), "≥ 1");
-  non_negative("search.jitter_start.distance", o.search.jitter_distance_start_m);
+  check_options(describe, o, "tiling option ");  // every range: the schema (schema.h)
+  // The rules that tie options together.
   require(o.search.jitter_distance_end_m >= o.search.jitter_distance_start_m, "search.jitter_end.distance",
           o.search.jitter_distance_end_m, "≥ search.jitter_start.distance");
-  non_negative("search.jitter_start.angle", o.search.jitter_angle_start_rad);
   require(o.search.jitter_angle_end_rad >= o.search.jitter_angle_start_rad, "search.jitter_end.angle",
           o.search.jitter_angle_end_rad, "≥ search.jitter_start.angle");
-  non_negative("search.jitter_start.time", o.search.jitter_time_start_s);
   require(o.search.jitter_time_end_s >= o.search.jitter_time_start_s, "search.jitter_end.time", o.search.jitter_time_end_s,
           "≥ search.jitter_start.time");
-  require(o.search.jitter_attempts >= 1, "search.attempts", static_cast<double>(o.search.jitter_attempts), "≥ 1");
   if (o.preference.position) positive("preference.position.sigma", o.preference.position->sigma_m2);
   if (o.preference.direction) positive("preference.direction.sigma", o.preference.direction->sigma_rad2);
   if (o.preference.time) positive("preference.time.sigma", o.preference.time->sigma_s2);
@@ -54,11 +36,6 @@ void validate(const Options& o) {
   for (const auto& [label, cost] : o.preference.label_costs) {
     require(std::isfinite(cost) && cost >= 0, ("preference.labels." + label).c_str(), cost, "a finite value ≥ 0");
   }
-  positive("index.cell", o.index.cell_m);
-  positive("index.cell_time", o.index.cell_s);
-  positive("obstacle_step", o.obstacle_step_m);
-  positive("obstacle_step_time", o.obstacle_step_s);
-  require(o.chains >= 1, "chains", static_cast<double>(o.chains), "≥ 1");
 }
 
 }  // namespace throng::tiling

@@ -8,7 +8,6 @@
 
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
-#include <throng/linalg/mpi.h>
 #include <throng/tiling/characters.h>
 
 #include "phases.h"
@@ -200,7 +199,7 @@ double index_cells(const PatchLibrary& library, const Region& region, const Opti
 }
 
 TilingResult tile(const PatchLibrary& library, const Environment& environment, const std::vector<Keyframe>& keyframes,
-                  const Options& options, Progress& progress) {
+                  const Options& options, Progress& progress, const Communicator& communicator) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(library, environment, keyframes, options);
   const Viability viability = find_usable_types(library);
@@ -217,7 +216,7 @@ TilingResult tile(const PatchLibrary& library, const Environment& environment, c
   const Problem problem(library, environment, options);
   check_keyframes(problem, keyframes);
 
-  const int rank = mpi::rank(), size = mpi::size();
+  const int rank = communicator.rank(), size = communicator.size();
   std::vector<std::size_t> mine;
   for (std::size_t c = 0; c < options.chains; ++c) {
     if (static_cast<int>(c % static_cast<std::size_t>(size)) == rank) mine.push_back(c);
@@ -248,7 +247,7 @@ TilingResult tile(const PatchLibrary& library, const Environment& environment, c
   const std::size_t per = as_doubles(ChainReport{}).size();
   std::vector<ChainReport> reports(options.chains);
   if (size > 1) {
-    for (const std::vector<double>& from : mpi::all_gather(local)) {
+    for (const std::vector<double>& from : communicator.all_gather(local)) {
       for (std::size_t k = 0; k + per <= from.size(); k += per) {
         const ChainReport r = from_doubles(from.data() + k);
         reports[r.chain] = r;
@@ -271,7 +270,7 @@ TilingResult tile(const PatchLibrary& library, const Environment& environment, c
         if (r.report.chain == best) bytes = to_bytes(r);
       }
     }
-    mpi::broadcast(bytes, owner);
+    communicator.broadcast(bytes, owner);
     out.tiling = from_bytes(bytes).tiling;
   } else {
     for (ChainResult& r : results) {

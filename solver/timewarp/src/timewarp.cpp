@@ -1,5 +1,6 @@
 #include <throng/core/errors.h>
 #include <throng/timewarp/resample.h>
+#include <throng/timewarp/schema.h>
 #include <throng/timewarp/timewarp.h>
 
 #include <algorithm>
@@ -138,23 +139,7 @@ std::vector<double> solve_ratios(const std::vector<double>& P, const std::vector
 
 }  // namespace
 
-void validate(const Options& o) {
-  if (!(std::isfinite(o.smoothing_time) && o.smoothing_time >= 0)) {
-    throw ConfigError("smoothing_time " + number(o.smoothing_time) + ": expected a time ≥ 0 in seconds");
-  }
-  if (!(std::isfinite(o.min_interval_ratio) && o.min_interval_ratio > 0 && o.min_interval_ratio <= 1)) {
-    throw ConfigError("min_interval_ratio " + number(o.min_interval_ratio) + ": expected a ratio in (0, 1]");
-  }
-  if (!(std::isfinite(o.max_interval_ratio) && o.max_interval_ratio >= 1)) {
-    throw ConfigError("max_interval_ratio " + number(o.max_interval_ratio) + ": expected a finite ratio ≥ 1");
-  }
-  if (!(std::isfinite(o.output_rate_hz) && o.output_rate_hz >= 0)) {
-    throw ConfigError("output_rate " + number(o.output_rate_hz) + ": expected a rate > 0 in Hz, or 0 for the input's rate");
-  }
-  if (!(std::isfinite(o.time_tolerance_s) && o.time_tolerance_s >= 0)) {
-    throw ConfigError("time_tolerance " + number(o.time_tolerance_s) + ": expected a time ≥ 0 in seconds");
-  }
-}
+void validate(const Options& o) { check_options(describe, o, "timewarp option "); }
 
 double Warp::map(double old_time) const {
   const std::size_t n = source_times.size();

@@ -23,8 +23,7 @@
 // Large datasets are chunked by frames and compressed (shuffle + deflate). Files are written atomically.
 #pragma once
 
-#include <throng/core/crowd_motion.h>
-#include <throng/core/scene.h>
+#include <throng/core/crowd.h>
 #include <throng/io/hdf5.h>
 
 #include <array>
@@ -47,12 +46,19 @@ struct Provenance {
   std::uint64_t seed = 0;
   std::vector<std::string> inputs;    ///< input files (names as given) or data sources
   std::vector<std::string> credits;   ///< authors of data the file derives from; carried through every method
+
+  /// Adds the credits not yet listed, in order (every place that merges credits does it this way).
+  void add_credits(const std::vector<std::string>& more) {
+    for (const std::string& c : more) {
+      bool listed = false;
+      for (const std::string& have : credits) listed = listed || have == c;
+      if (!listed) credits.push_back(c);
+    }
+  }
 };
 
-struct CrowdFile {
-  CrowdMotion motion;
-  Scene scene;
-  std::vector<std::array<std::int32_t, 2>> formation_edges;  ///< optional, agent index pairs
+/// A crowd (motion, scene, formation edges) and what made it.
+struct CrowdFile : Crowd {
   Provenance provenance;
 };
 

@@ -18,6 +18,8 @@ namespace throng {
 
 /// Reads the `obstacles` and `region` keys of `job` (both optional) and validates them (ConfigError naming the line).
 [[nodiscard]] Scene read_scene(const ConfigNode& job);
+/// Reads the `obstacles` key alone (for jobs without a region).
+[[nodiscard]] std::vector<Obstacle> read_obstacles(const ConfigNode& job);
 
 /// Writes `scene` as the same keys into `job` (for the effective config).
 void write_scene(YAML::Node& job, const Scene& scene);

@@ -1,7 +1,8 @@
 // The collision repair job (`throng collide CROWD.h5 [--job COLLIDE.yaml] -o OUT.h5`, or a `collide` step of
 // `throng run`), and the method data it stores in the output under /parameters/throng/collide.
 //
-// Job file (every key optional; defaults shown; lengths in metres; see throng/collide/collide.h for the method):
+// Job file (every key optional; defaults shown; lengths in metres; the options' schema is
+// throng/collide/schema.h, the method throng/collide/collide.h):
 //
 //   margin: 0                  # clearance = r_a + r_b + margin between agents, r + margin to an obstacle
 //   push_fraction: 0.1         # a push separates a pair by this fraction of its clearance (paper: 10 %)
@@ -25,34 +26,16 @@
 // from the solver naming the id.
 #pragma once
 
-#include <throng/collide/collide.h>
-#include <throng/core/scene.h>
-#include <throng/io/config.h>
-#include <throng/io/hdf5.h>
-#include <yaml-cpp/yaml.h>
+#include <throng/collide/runner.h>
+#include <throng/io/job_file.h>
 
-namespace throng {
+namespace throng::collide {
 
-/// A parsed collide job.
-struct CollideJob {
-  collide::Options options;
-  bool allow_remaining = false;
-  Scene scene;  ///< the job's own obstacles (added to the crowd's)
-};
-
-/// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
-[[nodiscard]] CollideJob read_collide_job(const ConfigNode& job);
-
-/// The job with every option at its effective value (for --print-config and the output's provenance).
-[[nodiscard]] YAML::Node effective_collide_job(const CollideJob& job);
-
-/// Writes the report under /parameters/throng/collide:
+/// Reads and checks a whole job (a periodic region is refused), then calls node.finish() (unknown keys are
+/// errors). ConfigError naming the line. The effective job is job_file.h's.
+void read_job(const ConfigNode& node, Job& job);
+/// Writes beside the report (collide/runner.h) in /parameters/throng/collide:
 ///   history   int64[I]    contacts (colliding frame intervals) after each iteration
-///   attributes: iterations, pair_contacts, obstacle_contacts, stuck_contacts, abandoned_contacts,
-///               initial_pair_contacts, initial_obstacle_contacts, constraints, moved_agents, min_pair_gap,
-///               min_obstacle_gap (metres, +inf when nothing within 16 m), max_displacement (m), input_max_speed,
-///               output_max_speed (m/s), input_max_acceleration, output_max_acceleration (m/s²), converged (0/1),
-///               stop_reason
-void write_collide_data(const h5::Group& throng_parameters, const collide::Report& report);
+void write_data(const h5::Group& record, const Run& run);
 
-}  // namespace throng
+}  // namespace throng::collide

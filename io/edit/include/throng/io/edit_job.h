@@ -56,34 +56,19 @@
 // constraints and a singular system are NumericalErrors (exit 5). See throng/edit/edit.h for the method.
 #pragma once
 
-#include <throng/edit/edit.h>
-#include <throng/io/config.h>
-#include <throng/io/hdf5.h>
-#include <yaml-cpp/yaml.h>
+#include <throng/edit/runner.h>
+#include <throng/io/job_file.h>
 
-namespace throng {
+namespace throng::edit {
 
-/// A parsed edit job: the options and what the user asks for.
-struct EditJob {
-  edit::Options options;
-  edit::Request request;
-  bool clip_only = false;  ///< write only the clip instead of the whole crowd with the clip put back (edit/output.h)
-};
-
-/// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
-[[nodiscard]] EditJob read_edit_job(const ConfigNode& job);
-
+/// Reads and checks a whole job, then calls node.finish() (unknown keys are errors). ConfigError naming the line.
+void read_job(const ConfigNode& node, Job& job);
 /// The job with every option at its effective value (for --print-config and the output's provenance).
-[[nodiscard]] YAML::Node effective_edit_job(const EditJob& job);
-
-/// Writes the method data under /parameters/throng/edit:
+[[nodiscard]] YAML::Node effective_job(const Job& job);
+/// Writes beside the report (edit/runner.h) in /parameters/throng/edit:
 ///   sample_frames   int64[S]   the input frames the graph sampled (the clip's frames are first..last)
-///   left_out        int64[L]   ids of agents absent from part of the clip (not edited: copied unchanged into
+///   left_out_ids    int64[L]   ids of agents absent from part of the clip (not edited: copied unchanged into
 ///                              the whole-crowd output, absent from a clip-only output)
-///   attributes: first_frame, last_frame (input frames of the clip), factorization (the solver's method),
-///               clip_only (1 when the file holds only the clip), seam_jump_m (edit/output.h: seam_jump),
-///               max_output_residual_m (the request's largest violation on the written frames)
-///               and for a local edit local_parts, region_parts, region_vertices (how much of the graph it solved)
-void write_edit_data(const h5::Group& throng_parameters, const edit::Result& result, bool clip_only, double seam_jump_m);
+void write_data(const h5::Group& record, const Run& run);
 
-}  // namespace throng
+}  // namespace throng::edit

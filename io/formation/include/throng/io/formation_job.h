@@ -63,8 +63,8 @@
 // a crowd are named by the crowd file and frame. See throng/formation/formation.h for the method.
 #pragma once
 
-#include <throng/formation/formation.h>
-#include <throng/io/config.h>
+#include <throng/formation/runner.h>
+#include <throng/io/job_file.h>
 #include <throng/io/crowd_file.h>
 #include <throng/io/hdf5.h>
 #include <yaml-cpp/yaml.h>
@@ -77,16 +77,15 @@ namespace throng {
 
 /// Keyframes taken from a crowd: which file (empty: the step's input crowd) and frames.
 struct FormationCrowdSource {
-  std::string file;
+  std::string file;          ///< resolved against the job file's folder (ConfigNode::as_path)
   std::vector<long> frames;  ///< negative counts from the end (−1 = last)
   std::vector<double> times; ///< empty: the crowd's times at those frames
   int dimension = 2;
 };
 
-/// A parsed formation job. With `from_crowd`, problem.keyframes is empty until resolve_formation_keyframes.
-struct FormationJob {
-  formation::Problem problem;
-  formation::Options options;
+/// A parsed formation job (read_job): the method's job (problem, options: formation/runner.h) and how it was
+/// written. With `from_crowd`, problem.keyframes is empty until resolve_formation_keyframes.
+struct FormationJob : formation::Job {
   std::optional<FormationCrowdSource> from_crowd;
   YAML::Node keyframes_yaml;   ///< the keyframes as written (positions or shapes), for the effective job
   YAML::Node hierarchy_yaml;   ///< the hierarchy as written
@@ -95,20 +94,20 @@ struct FormationJob {
 
 /// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). Generated shapes are
 /// expanded. ConfigError / InputError as the header comment says.
-[[nodiscard]] FormationJob read_formation_job(const ConfigNode& job);
+void read_job(const ConfigNode& node, FormationJob& job);
 
 /// With from_crowd: fills problem.keyframes (and ids, unless given) from `crowd` at the job's frames (nothing
 /// to do without). InputError for a frame out of range or an agent absent at a keyframe frame.
-void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd);
+void resolve_formation_keyframes(FormationJob& job, const Crowd* crowd);
 
 /// The job with every option at its effective value (for --print-config and the output's provenance).
-[[nodiscard]] YAML::Node effective_formation_job(const FormationJob& job);
+[[nodiscard]] YAML::Node effective_job(const FormationJob& job);
 
-/// The crowd of a finished run: motion, and as formation edges the pairs of individuals that are graph
-/// neighbours in every keyframe (the relations the formation keeps; each keyframe's own graph is in the method data).
-[[nodiscard]] CrowdFile formation_crowd(const formation::Result& result);
+}  // namespace throng
 
-/// Writes the method data under /parameters/throng/formation:
+namespace throng::formation {
+
+/// Writes the method data into /parameters/throng/formation (the report's fields join them, formation/runner.h):
 ///   keyframes/time            float64[K]        seconds
 ///   keyframes/frame           int64[K]          the keyframe's frame in the output
 ///   keyframes/position        float64[K][N][d]  each individual's keyframe position (after matching)
@@ -116,7 +115,6 @@ void resolve_formation_keyframes(FormationJob& job, const CrowdFile* crowd);
 ///   keyframes/edges_<k>       int32[E][2]       keyframe k's graph edges between individuals (after edits)
 ///   groups/name               string[G]         the hierarchy's groups (species = group index)
 ///   groups/parent             int64[G]          −1 for the root
-///   attributes: dimension, collision_enabled, collision_satisfied, collision_closest_m
-void write_formation_data(const h5::Group& throng_parameters, const FormationJob& job, const formation::Result& result);
+void write_data(const h5::Group& record, const Run& run);
 
-}  // namespace throng
+}  // namespace throng::formation

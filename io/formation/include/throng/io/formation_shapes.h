@@ -1,5 +1,6 @@
-// Shape generators for formation keyframes: large keyframe sets (a ring of 35 groups of 6 rings of 6, ten planes
+// The `shapes:` key of formation keyframes: large keyframe sets (a ring of 35 groups of 6 rings of 6, ten planes
 // spelling a letter) are impractical to type point by point, so a keyframe may list shapes instead of positions.
+// This reads their parameters; the generators are throng/formation/shapes.h.
 //
 // A keyframe's `shapes:` is a list; each entry is a mapping with exactly one generator key; the rows of all
 // entries are concatenated in order (entry 0's points are individuals 0.., then entry 1's ...):
@@ -40,8 +41,6 @@
 
 #include <Eigen/Core>
 
-#include <string>
-#include <vector>
 
 namespace throng {
 
@@ -50,16 +49,5 @@ namespace throng {
 
 /// The rows of one entry of a shapes list.
 [[nodiscard]] Eigen::MatrixXd generate_shape(const ConfigNode& shape);
-
-/// `count` points evenly by arc length along several polylines taken end to end (spacing L/count, the first
-/// point half a spacing from the start of the first line) (2-D; lines of zero total length are a ConfigError at `where`).
-[[nodiscard]] Eigen::MatrixXd sample_strokes(const std::vector<std::vector<Eigen::Vector2d>>& lines, int count,
-                                             const ConfigNode& where);
-
-/// The strokes of `text` in the built-in font: capitals A–Z and spaces, each letter in a box 0.6 wide and 1
-/// high (origin at its bottom-left), letters 0.85 apart, the whole text centred on (0, 0) and scaled to `height`.
-/// ConfigError at `where` for a character the font does not have.
-[[nodiscard]] std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height,
-                                                                     const ConfigNode& where);
 
 }  // namespace throng

@@ -35,36 +35,23 @@
 // See throng/sketch/sketch.h for the method and the meaning of each option.
 #pragma once
 
-#include <throng/core/scene.h>
-#include <throng/io/config.h>
-#include <throng/io/hdf5.h>
-#include <throng/sketch/sketch.h>
-#include <yaml-cpp/yaml.h>
+#include <throng/io/job_file.h>
+#include <throng/sketch/runner.h>
 
-namespace throng {
+namespace throng::sketch {
 
-/// A parsed sketch job: what was drawn, the surroundings, and the options (seed left at its default: the
-/// command sets it from --seed).
-struct SketchJob {
-  sketch::Drawing drawing;
-  Scene scene;
-  sketch::Options options;
-};
-
-/// Reads and checks a whole job, then calls job.finish() (unknown keys are errors). ConfigError naming the line.
-[[nodiscard]] SketchJob read_sketch_job(const ConfigNode& job);
-
+/// Reads and checks a whole job (the seed stays at its default: the command sets it from --seed), then calls
+/// node.finish() (unknown keys are errors). ConfigError naming the line.
+void read_job(const ConfigNode& node, Job& job);
 /// The job with every option at its effective value (for --print-config and the output's provenance).
-[[nodiscard]] YAML::Node effective_sketch_job(const SketchJob& job);
-
-/// Writes the method data under /parameters/throng/sketch:
+[[nodiscard]] YAML::Node effective_job(const Job& job);
+/// Writes beside the report (sketch/runner.h) in /parameters/throng/sketch:
 ///   strokes/main        float64[K][3]  x, y, t as given;  strokes/auxiliary_<i>  float64[K_i][3] (x, y, t)
 ///                       when the line was given with times, else float64[K_i][2]
 ///   course/main         float64[K][2]  the main line as used (pauses merged, resampled)
 ///   course/speed, width, standard_distance, irregularity, correction_scale   float64[K]   (Eq. 5, 6, 7, 12, 13)
 ///   agents/start        float64[N][2];  agents/weights float64[N][#strokes] (Eq. 2–3);
 ///   agents/correction_draw float64[N] (u_j, Eq. 13);  agents/arrival_time float64[N] (NaN: did not arrive)
-void write_sketch_data(const h5::Group& throng_parameters, const SketchJob& job,
-                       const sketch::SimulationResult& result);
+void write_data(const h5::Group& record, const Run& run);
 
-}  // namespace throng
+}  // namespace throng::sketch

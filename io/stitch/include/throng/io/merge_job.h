@@ -1,6 +1,7 @@
 // The merge job (`throng merge A.h5 B.h5 [C.h5 ...] -o OUT.h5`, or a `merge` step of `throng run` with
 // `inputs: [a, b, ...]`) and the data it stores under /parameters/throng/merge. Crowds are merged in the order
-// given: ((A + B) + C) + ... (solver/stitch/merge.h for the decisions: timeline, frame times, ids, scene).
+// given: ((A + B) + C) + ... (solver/stitch/merge.h for the decisions: timeline, frame times, ids, scene; the
+// options' schema in solver/stitch/schema.h, the runner in jobs.h).
 //
 // Job keys (all optional; defaults shown):
 //
@@ -12,42 +13,14 @@
 //   region: {...}                 #   town's buildings); format in throng/io/scene_config.h
 #pragma once
 
-#include <throng/io/config.h>
-#include <throng/io/crowd_file.h>
-#include <throng/io/hdf5.h>
-#include <throng/stitch/merge.h>
+#include <throng/io/job_file.h>
+#include <throng/stitch/jobs.h>
 
-#include <yaml-cpp/yaml.h>
+namespace throng::stitch {
 
-#include <vector>
+/// The job (options and scene) is read and written by job_file.h. Writes beside the report (stitch/jobs.h) in /parameters/throng/merge: group int32[N] (the input each agent
+/// comes from), interpolated_frames_by_merge int64[#inputs − 1][2] (frames interpolated in the first and the
+/// second crowd of each merge).
+void write_data(const h5::Group& record, const MergeRun& run);
 
-namespace throng {
-
-struct MergeJob {
-  stitch::MergeOptions options;
-  Scene scene;  ///< obstacles and region added to the union
-};
-
-/// Reads and checks a whole job, then calls job.finish(). ConfigError naming the line.
-[[nodiscard]] MergeJob read_merge_job(const ConfigNode& job);
-[[nodiscard]] YAML::Node effective_merge_job(const MergeJob& job);
-
-/// The merged crowd file and what each merge did.
-///   group      #agents: the index of the input each agent comes from
-///   id_shifts  #inputs: what was added to each input's ids (0 for the first)
-struct MergedCrowds {
-  CrowdFile crowd;
-  std::vector<std::int32_t> group;
-  std::vector<std::int64_t> id_shifts;
-  std::vector<stitch::MergeReport> reports;  ///< one per merge (#inputs − 1)
-};
-
-/// Merges two or more crowds in order; provenance credits of every input are kept. InputError from the merges
-/// names the input ("input 3: ..."); fewer than two inputs is a ConfigError.
-[[nodiscard]] MergedCrowds merge_crowds(const std::vector<const CrowdFile*>& inputs, const MergeJob& job);
-
-/// Writes /parameters/throng/merge: group int32[N], id_shift int64[#inputs], cross_edges int64[#inputs − 1]
-/// (formation edges joining the groups at the frame the edges were taken), interpolated_frames int64[#inputs − 1][2].
-void write_merge_data(const h5::Group& throng_parameters, const MergedCrowds& merged);
-
-}  // namespace throng
+}  // namespace throng::stitch

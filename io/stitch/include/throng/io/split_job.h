@@ -1,5 +1,6 @@
 // The split job (`throng split CROWD.h5 -o PART.h5 [--other REST.h5]`, or a `split` step of `throng run`) and the
-// data it stores under /parameters/throng/split. Splitting by time, by agents, or both (solver/stitch/split.h).
+// data it stores under /parameters/throng/split. Splitting by time, by agents, or both (solver/stitch/split.h;
+// the job's schema in solver/stitch/schema.h, the runner in jobs.h).
 //
 // Job keys (all optional, but at least one way to split; frames are indices into the input, times in seconds):
 //
@@ -19,48 +20,15 @@
 // agents: InputError (exit 3).
 #pragma once
 
-#include <throng/core/crowd_motion.h>
-#include <throng/io/config.h>
-#include <throng/io/hdf5.h>
-#include <throng/stitch/split.h>
+#include <throng/io/job_file.h>
+#include <throng/stitch/jobs.h>
 
-#include <yaml-cpp/yaml.h>
+namespace throng::stitch {
 
-#include <optional>
-#include <string>
+/// Reads and checks a whole job (the schema's keys, then how they go together), then calls node.finish().
+/// ConfigError naming the line. The effective job is job_file.h's.
+void read_job(const ConfigNode& node, SplitJob& job);
+/// Writes beside the report (stitch/jobs.h) in /parameters/throng/split: ids int64[N], the part's agents.
+void write_data(const h5::Group& record, const SplitRun& part);
 
-namespace throng {
-
-struct SplitJob {
-  std::optional<std::size_t> at_frame;
-  std::optional<double> at_time;
-  std::optional<std::array<std::size_t, 2>> frames;
-  std::optional<std::array<double, 2>> times;
-  bool keep_second = false;           ///< keep: second
-  std::optional<stitch::AgentSelection> agents;
-  bool keep_rest = false;             ///< keep_agents: rest
-  bool present_throughout = false;
-
-  [[nodiscard]] bool by_time() const noexcept { return at_frame || at_time; }
-  [[nodiscard]] bool by_range() const noexcept { return frames || times; }
-};
-
-/// Reads and checks a whole job, then calls job.finish(). ConfigError naming the line.
-[[nodiscard]] SplitJob read_split_job(const ConfigNode& job);
-
-/// The job with its effective values.
-[[nodiscard]] YAML::Node effective_split_job(const SplitJob& job);
-
-/// One part of the input, as the job says; `other` takes the other half of a split by time, or the rest of a
-/// split by agents (ConfigError for a job that has no single other part: a range, or time and agents together).
-struct SplitPart {
-  CrowdMotion crowd;
-  std::size_t first_frame = 0, last_frame = 0;  ///< the input frames the part covers
-  std::string part;                             ///< "first", "second", "range", "selected", "rest", or combinations
-};
-[[nodiscard]] SplitPart split_crowd(const CrowdMotion& input, const SplitJob& job, bool other = false);
-
-/// Writes /parameters/throng/split: attributes first_frame, last_frame (input frames), part; dataset ids int64[N].
-void write_split_data(const h5::Group& throng_parameters, const SplitPart& part);
-
-}  // namespace throng
+}  // namespace throng::stitch

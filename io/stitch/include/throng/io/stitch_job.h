@@ -1,6 +1,7 @@
 // The stitch job (`throng stitch A.h5 B.h5 [C.h5 ...] -o OUT.h5`, or a `stitch` step of `throng run` with
 // `inputs: [a, b, ...]`) and the data it stores under /parameters/throng/stitch. Clips are stitched in order:
-// ((A then B) then C) ... (solver/stitch/stitch.h for the method and its decisions).
+// ((A then B) then C) ... (solver/stitch/stitch.h for the method and its decisions; the options' schema in
+// solver/stitch/schema.h, the runner in jobs.h).
 //
 // Job keys (all optional; defaults shown):
 //
@@ -23,46 +24,16 @@
 //   solver: {backend: eigen, ...}                                 # as in the edit job (throng/io/edit_job.h)
 #pragma once
 
-#include <throng/io/config.h>
-#include <throng/io/crowd_file.h>
-#include <throng/io/hdf5.h>
-#include <throng/stitch/stitch.h>
+#include <throng/io/job_file.h>
+#include <throng/stitch/jobs.h>
 
-#include <yaml-cpp/yaml.h>
+namespace throng::stitch {
 
-#include <cstdint>
-#include <vector>
+/// Reads and checks a whole job (the options, the formation edits), then calls node.finish(). ConfigError naming
+/// the line. The effective job is job_file.h's.
+void read_job(const ConfigNode& node, StitchJob& job);
+/// Writes beside the report's joints (stitch/jobs.h) in /parameters/throng/stitch/joint_<k> (k from 1):
+/// first_ids, second_ids int64[N], the matching (agent of the clip so far, agent of the next clip).
+void write_data(const h5::Group& record, const StitchRun& run);
 
-namespace throng {
-
-struct StitchJob {
-  stitch::Options options;
-};
-
-/// Reads and checks a whole job, then calls job.finish(). ConfigError naming the line.
-[[nodiscard]] StitchJob read_stitch_job(const ConfigNode& job);
-[[nodiscard]] YAML::Node effective_stitch_job(const StitchJob& job);
-
-/// The stitched crowd and one result per joint (#inputs − 1), each without its crowd (kept in `crowd`).
-struct StitchedCrowds {
-  CrowdFile crowd;
-  std::vector<stitch::Result> joints;
-  std::vector<std::size_t> joint_frames;  ///< the output frame of each joint
-  /// Per joint, the ids of the clip so far that took part (agents absent somewhere in their clip are left out,
-  /// so a later joint may hold fewer agents than an earlier one); row k matches joints[k].second_ids.
-  std::vector<std::vector<std::int64_t>> joint_ids;
-};
-
-/// Stitches two or more clips in order. The scene is the first input's; provenance credits of every input are
-/// kept. Errors from a joint name it ("joint 2 (input 2 then input 3): ..."); fewer than two inputs is a
-/// ConfigError. `progress` receives each joint's progress in turn.
-[[nodiscard]] StitchedCrowds stitch_crowds(const std::vector<const CrowdFile*>& inputs, const StitchJob& job, Progress& progress);
-
-/// Writes /parameters/throng/stitch/joint_<k> (k from 1) for each joint: first_ids, second_ids int64[N] (the
-/// matching: agent of the clip so far, agent of the next clip), attributes frame (output frame of the joint),
-/// rotation (radians), translation [2] (metres, applied to the next clip), gap_rms, gap_max (metres), window
-/// [2] (frames from the joint to each window edge), window_seconds [2], attribute window_limited (1 when the
-/// automatic window was shortened to the budget), matching_distance (metres).
-void write_stitch_data(const h5::Group& throng_parameters, const StitchedCrowds& stitched);
-
-}  // namespace throng
+}  // namespace throng::stitch

@@ -1,5 +1,6 @@
 // The transform job (`throng transform CROWD.h5 -o OUT.h5`, or a `transform` step of `throng run`): place a clip
-// in space and time — rotate, translate, retime, resample, renumber (solver/stitch/transform.h).
+// in space and time — rotate, translate, retime, resample, renumber (solver/stitch/transform.h; the job's schema
+// in solver/stitch/schema.h, the runner in jobs.h).
 //
 // Job keys (all optional; defaults shown; metres, seconds, degrees):
 //
@@ -16,27 +17,14 @@
 //   species: k                    # every agent's species (colours in plots, groups in selections)
 #pragma once
 
-#include <throng/io/config.h>
-#include <throng/stitch/transform.h>
+#include <throng/io/job_file.h>
+#include <throng/stitch/jobs.h>
 
-#include <yaml-cpp/yaml.h>
+namespace throng::stitch {
 
-#include <optional>
+/// Reads and checks a whole job (translate or place_at, time_shift or start_time), then calls node.finish().
+/// ConfigError naming the line. The effective job is job_file.h's; a transform stores no data beside its report.
+void read_job(const ConfigNode& node, TransformJob& job);
+inline void write_data(const h5::Group&, const TransformRun&) {}
 
-namespace throng {
-
-struct TransformJob {
-  stitch::TransformOptions options;          ///< rotation in radians here
-  double rotate_degrees = 0.0;               ///< the job's `rotate`, as given (printed back unrounded)
-  std::optional<Eigen::Vector2d> place_at;   ///< replaces options.translation when given
-  std::optional<double> start_time;          ///< replaces options.time_shift when given
-};
-
-/// Reads and checks a whole job, then calls job.finish(). ConfigError naming the line.
-[[nodiscard]] TransformJob read_transform_job(const ConfigNode& job);
-[[nodiscard]] YAML::Node effective_transform_job(const TransformJob& job);
-
-/// The options for this crowd: place_at and start_time turned into a translation and a time shift.
-[[nodiscard]] stitch::TransformOptions resolve_transform(const TransformJob& job, const CrowdMotion& crowd);
-
-}  // namespace throng
+}  // namespace throng::stitch

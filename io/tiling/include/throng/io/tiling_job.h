@@ -12,8 +12,8 @@
 //     builtin_options: {sample_rate: 10, radius: 0.25, walk_speed: 1.3, walk_duration: 2, wait_duration: 2,
 //                       preference_per_character: 1}
 //     real:                          # optional: patches built from recorded trajectories (throng/tiling/construct.h)
-//       dataset: data/real/zara01   # a dataset folder (relative: to the job file, else the working
-//                                    # dir); the effective job and the provenance name the resolved folder
+//       dataset: ../data/real/zara01 # a dataset folder, relative to the job file's folder; the effective job and
+//                                    # the provenance name the resolved folder
 //       sample_rate: 10              # and every RealPatchOptions field: max_gap, radius, standing_speed,
 //       near: 1.5                    # clean_acceleration, min_contact, margin, reaction_min, synchronicity_min,
 //       max_pair_patches: 20         # single_duration, max_single_patches, preference_per_character
@@ -42,99 +42,34 @@
 //   obstacle_step_time: 0.05                        # ... and seconds along each path
 //   output: {frame_rate: 10, repeat: [1, 1, 1]}     # the characters' frames; copies of a repeating tile per axis
 //
-// Errors: everything in the job (keys, ranges, unknown patch names, a keyframe naming no patch or placed outside
-// the region or of a patch that can never be used, resources beyond tile.h's limits: the deformation systems'
-// memory, set by the sample rates and patch lengths, and the cells of the space-time index, set by index.cell,
-// index.cell_time and the region) is a ConfigError with the line (exit 2); a dataset that cannot be read is an
-// IoError/InputError from the importer.
+// Reading a job builds nothing (no dataset is imported, no patch made): the library is built when the job runs
+// (throng/tiling/runner.h prepare()). Errors: what the file says (keys, ranges, unknown built-in patch names, a
+// keyframe naming no built-in patch or placed outside the region) is a ConfigError with the line (exit 2) when the
+// job is read; what needs the library (a keyframe naming no patch of a library with recorded patches, or of a patch
+// that can never be used; resources beyond tile.h's limits: the deformation systems' memory, set by the sample
+// rates and patch lengths, and the cells of the space-time index, set by index.cell, index.cell_time and the
+// region) is a ConfigError naming the keys when it runs; a dataset that cannot be read is an IoError/InputError
+// from the importer.
 #pragma once
 
-#include <throng/core/scene.h>
-#include <throng/io/config.h>
-#include <throng/io/crowd_file.h>
-#include <throng/io/hdf5.h>
-#include <throng/tiling/characters.h>
-#include <throng/tiling/check.h>
-#include <throng/tiling/construct.h>
-#include <throng/tiling/library.h>
-#include <throng/tiling/patch.h>
-#include <throng/tiling/tile.h>
+#include <throng/io/job_file.h>
+#include <throng/io/tiling_data.h>
+#include <throng/tiling/runner.h>
 
-#include <array>
-#include <filesystem>
 #include <string>
-#include <vector>
 
 namespace throng {
 
-/// A parsed tiling job (the seed stays at its default: the command sets it from --seed).
-struct TilingJob {
-  tiling::PatchLibrary library;
-  tiling::Environment environment;
-  std::vector<tiling::Keyframe> keyframes;
-  tiling::Options options;
-  tiling::LayoutOptions layout;
-  // What the library was made from, for the effective job.
-  std::vector<std::string> builtin;
-  tiling::BuiltinOptions builtin_options;
-  std::string real_dataset;          ///< the resolved dataset folder; empty: none
-  tiling::RealPatchOptions real_options;
-  std::vector<std::pair<std::string, double>> preferences;
-  std::vector<std::string> credits;  ///< credit lines of the real data used
+/// A parsed tiling job: the method's job (tiling/runner.h; the seed stays at its default: the command sets it
+/// from --seed) and the recorded crowd its library takes patches from.
+struct TilingJob : tiling::Job {
+  std::string real_dataset;  ///< the resolved dataset folder of library.real; empty: none
 };
 
-/// Reads and checks a whole job (building the library), then calls job.finish().
-[[nodiscard]] TilingJob read_tiling_job(const ConfigNode& job);
+/// Reads and checks a whole job, then calls node.finish(). Imports nothing and builds nothing.
+void read_job(const ConfigNode& node, TilingJob& job);
 
 /// The job with every option at its effective value.
-[[nodiscard]] YAML::Node effective_tiling_job(const TilingJob& job);
-
-/// The check options that go with a job's tiler options (the same limits and thresholds).
-[[nodiscard]] tiling::CheckOptions check_options_for(const tiling::Options& options);
-
-/// The scene of the laid characters (the crowd file's scene): the region covers every laid copy (repeat[a]
-/// periods along each periodic axis) and keeps the tile's periodic flags (the laid box repeats as the tile does);
-/// obstacles are copied into every laid copy in space (the tile's own first, then copy by copy, x-major).
-/// Moving obstacles follow their motion once: a time copy of a periodic-time tile does not repeat it.
-[[nodiscard]] Scene laid_scene(const tiling::Environment& environment, const tiling::LayoutOptions& layout);
-
-/// Writes /parameters/throng/tiling:
-///   library/pose_classes string[P]; library/type_name, type_label string[K]; library/type_preference float64[K];
-///   library/type_fragments int64[K+1] (first fragment of each type); library/fragment int64[F][4] (kind 0
-///   character 1 prop, entry class, exit class, first sample); library/fragment_radius float64[F];
-///   library/samples float64[S+…][4] (x, y, heading, t in the type's canonical frame); library/constraints
-///   int64[C][5] (type, fragment a, sample a, fragment b, sample b)
-///   instances/type int64[I]; instances/transform float64[I][4] (x, y, angle rad, time shift);
-///   instances/keyframed int32[I]; instances/paths float64[S'][4] (x, y, heading, t: every instance's fragments
-///   in order, each with its type's sample count)
-///   connections int64[C][7] (from instance, from fragment, to instance, to fragment, image x, y, t)
-///   sources, sinks float64[n][5] (centre x, y, radius, t0, t1)
-///   agents/pieces int64[P][6] (agent, instance, fragment, copy x, y, t): the fragments each output agent walks
-///   region float64[6] (min x, min y, max x, max y, t0, t1) and region_periodic int32[3]: the tile (the crowd's
-///   scene region is the laid extent, see laid_scene); repeat int64[3]: the copies laid per axis
-///   attributes: the check options (limits, match, obstacle steps), tile_obstacles (how many of the scene's
-///   obstacles, the first ones, are the tile's own) and the report (dangling, chains, best_chain, instances,
-///   characters, connections). No wall time: the same seed gives the same file.
-void write_tiling_data(const h5::Group& throng_parameters, const tiling::PatchLibrary& library,
-                       const tiling::TilingResult& result, const tiling::Environment& environment,
-                       const tiling::CheckOptions& check, const tiling::Characters& characters,
-                       const tiling::LayoutOptions& layout);
-
-/// What `throng check-tiling` and `throng plot` need from a tiling file.
-struct TilingData {
-  tiling::PatchLibrary library;
-  tiling::Tiling tiling;
-  tiling::Environment environment;  ///< the tile: its region, its own obstacles, sources and sinks
-  tiling::CheckOptions check;
-  std::array<int, 3> repeat{1, 1, 1};                   ///< copies laid per axis
-  std::vector<std::vector<tiling::AgentPiece>> pieces;  ///< per output agent, the fragment copies it walks
-};
-
-/// Reads a crowd file written by `throng tile`. IoError (missing or unreadable), InputError (no tiling data,
-/// bad shapes).
-[[nodiscard]] TilingData read_tiling_data(const std::filesystem::path& path);
-
-/// Whether a crowd file holds /parameters/throng/tiling. IoError when it cannot be opened.
-[[nodiscard]] bool has_tiling_data(const std::filesystem::path& path);
+[[nodiscard]] YAML::Node effective_job(const TilingJob& job);
 
 }  // namespace throng

@@ -41,12 +41,9 @@
 // bends a whole trajectory. Spreads above 1,000 frames count as 1,000 (the anchor stays ≥ 1e-6 of the velocity
 // weight, so a trajectory without pins stays well conditioned; a push then moves it almost rigidly).
 //
-// Plausibility (report: input and output max speed and acceleration). Measured with the defaults: bump config
-// 1.75 → 6.5 m/s at most (99th percentile 2.9), Figure 9 config 1.2 → 13 m/s (99th percentile 2.5: a few
-// agents round the wall's corners within two frames, where the clearance is only just met), crossing
-// 1.33 → 3.9 m/s (99th percentile 1.9), real data at most 1.001× the fastest recorded pedestrian. Pushes are
-// met exactly at contact points only, so a contact cleared at the last iteration can leave a sharp turn; a
-// speed limit is not a constraint of this method.
+// Plausibility (report: input and output max speed and acceleration; the measurements on the shipped configs and
+// real data are in docs/commands/collide.md). Pushes are met exactly at contact points only, so a contact cleared
+// at the last iteration can leave a sharp turn; a speed limit is not a constraint of this method.
 //
 // Solver (src/track_solver.h). Each touched trajectory's system Q (features of its input shape, its pins) is
 // assembled and factorised once, when it is first pushed, and cached for the run; each iteration's pushes are
@@ -60,18 +57,8 @@
 //  * `schur`: the band factor of Q once, the pushes through the Schur complement on it: m back substitutions and
 //    an m × m dense factorisation for m pushed rows (hundreds per trajectory in the first iterations).
 //  * `linalg`: throng/linalg's ConstrainedLeastSquares (CHOLMOD, its Schur complement over added constraints).
-// Measured (bench_collide BM_TrackMethod, solve seconds, one run each, 2 cores shared with other work, load
-// average 4-6): synthetic Figure 8 (scenes::bump(5, 450): 50 agents × 450 frames, 9 iterations) eliminate 0.12,
-// schur 2.28, linalg 1.86; synthetic Figure 9 (61 × 900) eliminate 0.92 (225 iterations), schur 5.06 (123),
-// linalg 6.43 (259): rounding differences lead the runs along different paths, each converging.
-//
-// Speed (bench_collide BM_Config: the shipped configs' collide steps on the crowds their sketch and merge steps
-// make; medians of 3 on this machine's 2 cores shared with other builds and tests, load average 6-7; the table
-// and the history are in docs/commands/collide.md): the two groups bumping (50 × 481, 55 iterations) 0.17 s with
-// 2 threads, 0.12 s CPU on one (target 0.2 s); the narrow opening (37 × 601, 30 iterations) 0.12 s, 0.08 s
-// (target 5 s); the crossing (1,000 × 301, 271 iterations) 9.6 s, 6.6 s (target 30 s), half detection (22
-// million segments examined again over the run: a pushed trajectory moves at every frame), half solves. Was
-// 0.88 s, 0.63 s and 35.5 s with a full grid search per iteration and Schur-complement solves.
+// How fast each is, and the configs' and real data's speeds, are measured in docs/commands/collide.md
+// (bench_collide).
 //
 // Pins. With pin_ends, every trajectory's first and last present frame is pinned (for a crowd present throughout,
 // the clip's first and last frames: paper Figure 8); `fixed_agents` pins whole trajectories. A pushed point
@@ -103,6 +90,7 @@
 #pragma once
 
 #include <throng/collide/broad_phase.h>
+#include <throng/core/communicator.h>
 #include <throng/core/crowd_motion.h>
 #include <throng/core/obstacle.h>
 #include <throng/core/progress.h>
@@ -181,10 +169,12 @@ struct Result {
   Report report;
 };
 
-/// Repairs `crowd` among `obstacles`. Throws ConfigError for bad options (naming the option) or an unknown fixed
-/// agent id, InputError for an invalid crowd. Does not throw when contacts remain (see the report).
+/// Repairs `crowd` among `obstacles`, spreading the trajectories' solves over `communicator`'s ranks (every rank
+/// calls it with the same arguments and gets the same result). Throws ConfigError for bad options (naming the
+/// option) or an unknown fixed agent id, InputError for an invalid crowd. Does not throw when contacts remain
+/// (see the report).
 [[nodiscard]] Result resolve_collisions(const CrowdMotion& crowd, const std::vector<Obstacle>& obstacles, const Options& options,
-                                        Progress& progress);
+                                        Progress& progress, const Communicator& communicator = Communicator::single());
 
 /// Checks option values; throws ConfigError naming the option.
 void validate(const Options& options);

@@ -68,6 +68,12 @@ struct ObstacleDistance {
 /// Axis-aligned bounds covering every pose over [t0, t1] (exact for static obstacles, conservative for moving).
 [[nodiscard]] Eigen::AlignedBox2d bounds_over(const Obstacle& obstacle, double t0, double t1);
 
+/// Moves an obstacle rigidly in the world: a static shape's points go through `motion` (a rotation keeps a
+/// polygon counter-clockwise); a moving obstacle's poses become motion ∘ pose (translation ↦ motion · translation,
+/// angle ↦ angle + rotation), its key times unchanged. `rotation` is the motion's angle (radians), given so that
+/// angles add exactly.
+void move_rigidly(Obstacle& obstacle, const Eigen::Isometry2d& motion, double rotation);
+
 /// Checks the shape and motion (radius > 0, polygon convex and CCW with ≥ 3 vertices, finite values, key times
 /// increasing); throws InputError naming `what` and the problem.
 void validate(const Obstacle& obstacle, const std::string& what);

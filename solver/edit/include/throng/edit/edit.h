@@ -33,6 +33,7 @@
 #pragma once
 
 #include <throng/core/crowd_motion.h>
+#include <throng/core/progress.h>
 #include <throng/graph/clip.h>
 #include <throng/graph/features.h>
 #include <throng/graph/motion_graph.h>
@@ -40,6 +41,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -219,6 +221,35 @@ class Editor {
   std::unique_ptr<State> state_;
 };
 
+/// Where a local edit meets the motion it left alone: the region's edge in time, i.e. pairs of consecutive
+/// samples of one agent of which one was solved and the other held. The vertex outside is pinned at its current
+/// position, so whatever the edit moved the inside one by is added to that one step: the agent's velocity
+/// changes within one sample interval. added_m measures it: |Δp_edited − Δp_input| per frame across the edge.
+/// A jump is an added step larger than the agent could have made itself (jump_factor × its fastest input step,
+/// floored at reference_floor × the clip's fastest, so that a standing agent nudged by millimetres is not one).
+/// The pair reported is the edge pair with the largest added step against that reference.
+struct BoundaryStep {
+  /// An added step above this many times the agent's fastest input step is a jump a viewer sees: the agent's
+  /// velocity changes by more than its own top speed within one frame (see docs/commands/scale.md, "Jumps at
+  /// the region's edge", for the measurements behind it).
+  static constexpr double jump_factor = 1.0;
+  /// The reference is at least this fraction of the clip's fastest step (standing agents).
+  static constexpr double reference_floor = 0.1;
+
+  double added_m = 0;            ///< |Δp_edited − Δp_input| / frames across the edge, metres per frame (0: no edge)
+  double edited_m = 0;           ///< the step there in the last result, metres per frame
+  double input_m = 0;            ///< the input's step there, metres per frame
+  double agent_input_max_m = 0;  ///< that agent's fastest input step over the clip, metres per frame
+  double input_max_m = 0;        ///< the input's fastest step between consecutive samples, any agent, whole clip
+  std::int64_t agent = -1;       ///< the agent id of that pair (−1: no agent crosses the edge)
+  std::size_t frame = 0;         ///< the earlier input frame of that pair of samples
+
+  /// The step an added step is judged against: max(agent_input_max_m, reference_floor · input_max_m).
+  [[nodiscard]] double reference_m() const noexcept { return std::max(agent_input_max_m, reference_floor * input_max_m); }
+  /// added_m > jump_factor · reference_m().
+  [[nodiscard]] bool is_jump() const noexcept { return added_m > jump_factor * reference_m(); }
+};
+
 /// The result of a one-off edit.
 struct Result {
   CrowdMotion crowd;  ///< the edited clip at the source frame rate: input frames first_frame..last_frame
@@ -226,11 +257,14 @@ struct Result {
   std::size_t first_frame = 0;             ///< the clip's first input frame
   std::size_t last_frame = 0;              ///< the clip's last input frame
   std::vector<std::size_t> sample_frames;  ///< the input frames the graph sampled
+  std::optional<BoundaryStep> boundary;    ///< local edits: the step across the region's edge in time
 };
 
 /// One-off: build, precompute and deform once (what `throng edit` runs). With options.local.parts > 0 the edit
 /// is local (a LocalEditor on the input positions): vertices outside the region keep their input positions.
-[[nodiscard]] Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request);
+/// `progress`, when given, hears each stage.
+[[nodiscard]] Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const Request& request,
+                                       Progress* progress = nullptr);
 
 /// The largest violation (metres) of `request` by `edited`, an edited clip at the source rate as Editor::resample
 /// returns it (input frames first_frame.., agents by id): every pin, every drag target and every general

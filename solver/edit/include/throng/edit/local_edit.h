@@ -50,35 +50,6 @@
 
 namespace throng::edit {
 
-/// Where a local edit meets the motion it left alone: the region's edge in time, i.e. pairs of consecutive
-/// samples of one agent of which one was solved and the other held. The vertex outside is pinned at its current
-/// position, so whatever the edit moved the inside one by is added to that one step: the agent's velocity
-/// changes within one sample interval. added_m measures it: |Δp_edited − Δp_input| per frame across the edge.
-/// A jump is an added step larger than the agent could have made itself (jump_factor × its fastest input step,
-/// floored at reference_floor × the clip's fastest, so that a standing agent nudged by millimetres is not one).
-/// The pair reported is the edge pair with the largest added step against that reference.
-struct BoundaryStep {
-  /// An added step above this many times the agent's fastest input step is a jump a viewer sees: the agent's
-  /// velocity changes by more than its own top speed within one frame (see docs/commands/scale.md, "Jumps at
-  /// the region's edge", for the measurements behind it).
-  static constexpr double jump_factor = 1.0;
-  /// The reference is at least this fraction of the clip's fastest step (standing agents).
-  static constexpr double reference_floor = 0.1;
-
-  double added_m = 0;            ///< |Δp_edited − Δp_input| / frames across the edge, metres per frame (0: no edge)
-  double edited_m = 0;           ///< the step there in the last result, metres per frame
-  double input_m = 0;            ///< the input's step there, metres per frame
-  double agent_input_max_m = 0;  ///< that agent's fastest input step over the clip, metres per frame
-  double input_max_m = 0;        ///< the input's fastest step between consecutive samples, any agent, whole clip
-  std::int64_t agent = -1;       ///< the agent id of that pair (−1: no agent crosses the edge)
-  std::size_t frame = 0;         ///< the earlier input frame of that pair of samples
-
-  /// The step an added step is judged against: max(agent_input_max_m, reference_floor · input_max_m).
-  [[nodiscard]] double reference_m() const noexcept { return std::max(agent_input_max_m, reference_floor * input_max_m); }
-  /// added_m > jump_factor · reference_m().
-  [[nodiscard]] bool is_jump() const noexcept { return added_m > jump_factor * reference_m(); }
-};
-
 /// The stateful local editor (same request language and options as Editor; options.local.parts ≥ 1).
 ///   positions  #samples*#agents by 2, row = graph().clip.vertex(sample, agent)
 class LocalEditor {
@@ -126,7 +97,9 @@ class LocalEditor {
   std::unique_ptr<State> state_;
 };
 
-/// One-off local edit of the input positions (what edit_group_motion runs when options.local.parts > 0).
-[[nodiscard]] Result edit_locally(const CrowdMotion& crowd, const Options& options, const Request& request);
+/// One-off local edit of the input positions (what edit_group_motion runs when options.local.parts > 0), with
+/// the step across the region's edge in Result::boundary.
+[[nodiscard]] Result edit_locally(const CrowdMotion& crowd, const Options& options, const Request& request,
+                                  Progress* progress = nullptr);
 
 }  // namespace throng::edit

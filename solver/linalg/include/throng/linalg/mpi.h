@@ -10,6 +10,8 @@
 // Collectives must be called by every rank in the same order (SPMD).
 #pragma once
 
+#include <throng/core/communicator.h>
+
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -58,5 +60,9 @@ void broadcast(std::vector<double>& data, int root = 0);
 /// Σ over ranks and max over ranks of one value, on every rank.
 [[nodiscard]] double sum(double value);
 [[nodiscard]] double max(double value);
+
+/// MPI_COMM_WORLD as a Communicator, for the program to pass to the methods that spread work over ranks
+/// (src/world.cpp). Its first use initialises MPI when launched by mpiexec, as rank() does.
+[[nodiscard]] const Communicator& world();
 
 }  // namespace throng::mpi

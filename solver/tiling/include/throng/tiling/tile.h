@@ -33,6 +33,7 @@
 //   shifts are kept inside the tile.
 #pragma once
 
+#include <throng/core/communicator.h>
 #include <throng/core/progress.h>
 #include <throng/tiling/options.h>
 #include <throng/tiling/patch.h>
@@ -104,8 +105,10 @@ struct TilingResult {
 /// placed without leaving a dangling end; all before any search. An imperfect result (caps reached, or a
 /// search that stopped because nothing fits the ends left) is returned, not thrown: report.perfect() says.
 /// Progress is reported from the calling thread.
-/// MPI: when launched by mpiexec, every rank must call tile() with the same arguments.
+/// Ranks: the chains are spread round-robin over `communicator`'s ranks; every rank must call tile() with the
+/// same arguments, and every rank gets the best chain's tiling.
 [[nodiscard]] TilingResult tile(const PatchLibrary& library, const Environment& environment,
-                                const std::vector<Keyframe>& keyframes, const Options& options, Progress& progress);
+                                const std::vector<Keyframe>& keyframes, const Options& options, Progress& progress,
+                                const Communicator& communicator = Communicator::single());
 
 }  // namespace throng::tiling

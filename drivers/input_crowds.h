@@ -1,5 +1,5 @@
-// The crowd files a command reads from its command line, in order, with what its output's provenance names
-// (throng merge and throng stitch read two or more).
+// The crowd files a method command reads from its command line, in order, with what its output's provenance
+// names (throng merge and throng stitch read two or more).
 #pragma once
 
 #include <throng/io/crowd_file.h>
@@ -12,8 +12,8 @@ namespace throng::cli {
 
 struct InputCrowds {
   std::vector<CrowdFile> files;            ///< as read, in the order given
-  std::vector<const CrowdFile*> crowds;    ///< into `files` (a move of InputCrowds keeps them valid)
-  std::vector<const Provenance*> sources;  ///< each file's provenance, for Context::provenance
+  Crowds crowds;                           ///< into `files` (a move of InputCrowds keeps them valid)
+  std::vector<std::string> credits;        ///< the files' credits, each once
   std::vector<std::string> names;          ///< the files' paths, then the job's when there is one
 };
 

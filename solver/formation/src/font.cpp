@@ -1,15 +1,15 @@
 // The built-in stroke font of the `text` shape: capitals A–Z as polylines in a box 0.6 wide and 1 high (origin at
 // the bottom-left), round letters drawn as octagons. Enough for formations spelling words (the paper's airshow
 // spells T, H, E, E, N, D with ten planes).
-#include <throng/io/formation_shapes.h>
+#include <throng/core/errors.h>
+#include <throng/formation/shapes.h>
 
 #include <cctype>
 #include <utility>
 
-namespace throng {
+namespace throng::formation {
 namespace {
 
-using Line = std::vector<Eigen::Vector2d>;
 using Glyph = std::vector<Line>;
 
 Line l(std::initializer_list<std::pair<double, double>> points) {
@@ -56,7 +56,7 @@ Glyph glyph(char c) {
 
 }  // namespace
 
-std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, double height, const ConfigNode& where) {
+std::vector<Line> text_strokes(const std::string& text, double height) {
   constexpr double advance = 0.85;  // letter width 0.6 plus the gap
   std::vector<Line> out;
   double x = 0;
@@ -64,7 +64,7 @@ std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, 
     const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(raw)));
     if (c != ' ') {
       Glyph g = glyph(c);
-      if (g.empty()) where.fail(std::string("text: the font has no '") + raw + "'; it has the capitals A–Z and spaces");
+      if (g.empty()) throw ConfigError(std::string("text: the font has no '") + raw + "'; it has the capitals A–Z and spaces");
       for (Line& line : g) {
         for (Eigen::Vector2d& p : line) p.x() += x;
         out.push_back(std::move(line));
@@ -72,11 +72,11 @@ std::vector<std::vector<Eigen::Vector2d>> text_strokes(const std::string& text, 
     }
     x += advance;
   }
-  if (out.empty()) where.fail("text: no letters to draw");
+  if (out.empty()) throw ConfigError("text: no letters to draw");
   const double width = x - (advance - 0.6);
   for (Line& line : out)
     for (Eigen::Vector2d& p : line) p = height * (p - Eigen::Vector2d(0.5 * width, 0.5));
   return out;
 }
 
-}  // namespace throng
+}  // namespace throng::formation

@@ -6,10 +6,12 @@ InputCrowds read_input_crowds(const std::vector<std::filesystem::path>& inputs, 
   InputCrowds in;
   in.files.reserve(inputs.size());
   for (const auto& path : inputs) in.files.push_back(read_crowd_file(path));
+  Provenance credits;
   for (const auto& f : in.files) {
     in.crowds.push_back(&f);
-    in.sources.push_back(&f.provenance);
+    credits.add_credits(f.provenance.credits);
   }
+  in.credits = credits.credits;
   for (const auto& path : inputs) in.names.push_back(path.string());
   if (!job_path.empty()) in.names.push_back(job_path.string());
   return in;

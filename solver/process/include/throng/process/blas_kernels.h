@@ -8,11 +8,12 @@
 //
 // choose_blas_kernels(): when OpenBLAS reports Prescott on a CPU with AVX-512 (or AVX2 + FMA), switch it to the
 // newest kernel set the CPU runs (SkylakeX, or Haswell) through OpenBLAS's own OPENBLAS_CORETYPE mechanism,
-// re-run by its exported gotoblas_dynamic_quit/init. A user's OPENBLAS_CORETYPE is left alone; without OpenBLAS
-// (or without DYNAMIC_ARCH) the symbols are absent and nothing happens. Idempotent and thread-safe: the first
-// call decides. The program calls it first thing, so results do not depend on which method ran first in a
-// pipeline (kernel sets differ in the last bits); the backends and the dense formation kernels call it too, for
-// library users and test programs. Returns the kernel set in use ("" when OpenBLAS is not there).
+// re-run by its exported gotoblas_dynamic_quit/init (which reads it from the environment: hence the setenv, once,
+// here and nowhere inside a method). A user's OPENBLAS_CORETYPE is left alone; without OpenBLAS (or without
+// DYNAMIC_ARCH) the symbols are absent and nothing happens. Idempotent and thread-safe: the first call decides.
+// Process (process.h) calls it when a program starts, before any BLAS call, so results do not depend on which
+// method ran first in a pipeline (kernel sets differ in the last bits). Returns the kernel set in use ("" when
+// OpenBLAS is not there).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-#include <throng/core/blas_kernels.h>
+#include <throng/process/blas_kernels.h>
 
 #include <dlfcn.h>
 

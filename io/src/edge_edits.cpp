@@ -1,4 +1,4 @@
-#include <throng/io/edge_edits_job.h>
+#include <throng/io/edge_edits.h>
 
 #include <cstdint>
 #include <limits>

@@ -1,0 +1,190 @@
+#include "pipeline.h"
+
+#include "rank_outcome.h"
+
+#include <throng/core/errors.h>
+
+#include <cstdio>
+#include <exception>
+#include <fcntl.h>
+#include <iostream>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+namespace throng::cli {
+namespace {
+
+const std::set<std::string> pipeline_keys{"step", "name", "input", "inputs", "job", "output"};
+
+void flush_stdout() {
+  std::cout.flush();
+  std::fflush(stdout);
+}
+
+// Runs `step` on rank 0 alone and gives every rank its outcome: rank 0 rethrows its own error, the others throw
+// one of the same kind (exit code) and message, so all ranks leave the pipeline at the same step. The other
+// ranks get no result (the steps run this way make no crowd). One rank: just runs it.
+template <class Step>
+std::optional<StepResult> on_rank_0(Step&& step, const Communicator& ranks) {
+  if (ranks.size() == 1) return step();
+  std::optional<StepResult> result;
+  std::exception_ptr failure;
+  std::vector<std::byte> outcome;  // empty: done; else the exit code, then the message
+  if (ranks.rank() == 0) {
+    try {
+      result = step();
+    } catch (...) {
+      failure = std::current_exception();
+      const ErrorOutcome e = outcome_of(failure);
+      outcome = bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
+    }
+  }
+  ranks.broadcast(outcome, 0);
+  if (failure) std::rethrow_exception(failure);
+  if (outcome.empty()) return result;
+  const std::string text = text_of(outcome);
+  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text[0])), text.substr(1));
+}
+
+Command* find(const std::vector<Command*>& commands, const std::string& which) {
+  for (Command* c : commands) {
+    if (c->name() == which && c->name() != "run") return c;
+  }
+  return nullptr;
+}
+
+// The step's own keys: its job file's, then its inline keys over them, without the pipeline keys (and without
+// `output` when the step makes a crowd: the pipeline writes it). Each key keeps its file for messages and paths.
+ConfigNode own_keys(const ConfigNode& step, bool makes_crowd) {
+  std::vector<ConfigNode> layers;
+  std::string source = step.source();
+  if (auto j = step.find("job")) {
+    const std::filesystem::path path = j->as_path();
+    layers.push_back(ConfigNode::load_file(path));
+    if (!layers.back().is_null() && !layers.back().is_map()) layers.back().fail("a step's job file must hold a mapping of keys");
+    source = path.string() + " and " + source;
+  }
+  YAML::Node inline_keys(YAML::NodeType::Map);
+  for (auto it = step.yaml().begin(); it != step.yaml().end(); ++it) {
+    const std::string key = it->first.Scalar();
+    if (pipeline_keys.count(key) && !(key == "output" && !makes_crowd)) continue;
+    inline_keys.force_insert(it->first, it->second);  // the key nodes themselves: messages give their line
+  }
+  layers.push_back(ConfigNode(inline_keys, step.source()));
+  return ConfigNode::layered(layers, source);
+}
+
+// The crowds a step reads: named steps or files (relative to the job's folder), else the last crowd made (when
+// the step's command reads crowds at all).
+std::vector<const CrowdFile*> inputs_of(const ConfigNode& step, std::map<std::string, CrowdFile>& named,
+                                        const std::optional<CrowdFile>& last, bool reads_crowds) {
+  auto resolve = [&](const ConfigNode& ref) -> const CrowdFile* {
+    if (auto it = named.find(ref.as_string()); it != named.end()) return &it->second;
+    const std::filesystem::path path = ref.as_path();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
+      throw IoError(ref.where() + ": '" + ref.as_string() + "' is neither an earlier step's name nor an existing crowd file");
+    }
+    return &named.emplace(path.string(), read_crowd_file(path)).first->second;
+  };
+  std::vector<const CrowdFile*> inputs;
+  if (auto in = step.find("input")) inputs.push_back(resolve(*in));
+  if (auto ins = step.find("inputs")) {
+    for (const auto& in : ins->elements()) inputs.push_back(resolve(in));
+  }
+  if (!step.has("input") && !step.has("inputs") && last && reads_crowds) inputs.push_back(&*last);
+  return inputs;
+}
+
+}  // namespace
+
+StdoutRedirect::StdoutRedirect(int target) {
+  flush_stdout();
+  saved_ = ::dup(1);
+  const int fd = target >= 0 ? target : ::open("/dev/null", O_WRONLY);
+  if (saved_ < 0 || fd < 0 || ::dup2(fd, 1) < 0) throw IoError("run: cannot redirect standard output");
+  if (target < 0) ::close(fd);
+}
+
+StdoutRedirect::~StdoutRedirect() {
+  flush_stdout();
+  if (saved_ >= 0) {
+    ::dup2(saved_, 1);
+    ::close(saved_);
+  }
+}
+
+std::vector<std::filesystem::path> named_outputs(const ConfigNode& job) {
+  std::vector<std::filesystem::path> out;
+  const YAML::Node steps = job.yaml()["steps"];
+  if (!steps || !steps.IsSequence()) return out;
+  for (const YAML::Node& step : steps) {
+    if (!step.IsMap() || !step["output"] || !step["output"].IsScalar()) continue;
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(step["output"].Scalar(), ec);
+    out.push_back(ec ? std::filesystem::path(step["output"].Scalar()) : p.lexically_normal());
+  }
+  return out;
+}
+
+std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const std::vector<Command*>& commands,
+                                   Context& context, bool collective) {
+  const bool writer = !collective || context.writer();
+  const ConfigNode job = context.load_job(job_path);
+  if (context.print_config_if_asked(job.yaml())) return std::nullopt;
+  const std::vector<ConfigNode> steps = job.at("steps").elements();
+  if (steps.empty()) job.at("steps").fail("the pipeline has no steps");
+  for (const ConfigNode& step : steps) {
+    if (!step.is_map()) step.fail("a step is a mapping with at least the key 'step'");
+    (void)step.keys();  // every key of a step is either a pipeline key or the step's own (checked by the step)
+    if (!find(commands, step.at("step").as_string())) step.at("step").fail("unknown step '" + step.at("step").as_string() + "'");
+  }
+  job.finish();
+  context.limit_threads();
+
+  std::map<std::string, CrowdFile> named;  // results of named steps and crowds read from files
+  std::optional<CrowdFile> last;           // the last crowd made
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const ConfigNode& step = steps[i];
+    Command* command = find(commands, step.at("step").as_string());
+    const std::string label = "step " + std::to_string(i + 1) + "/" + std::to_string(steps.size()) + " " + command->name();
+    std::optional<StepResult> result;
+    std::vector<const CrowdFile*> inputs;
+    {
+      Context::ProgressScope scope(context, static_cast<double>(i) / steps.size(), 1.0 / steps.size(), label);
+      try {
+        inputs = inputs_of(step, named, last, command->reads_crowds());
+        const ConfigNode own = own_keys(step, command->makes_crowd());
+        if (collective && !command->makes_crowd()) {
+          result = on_rank_0([&] { return command->run_step(own, inputs, context); }, context.communicator());
+        } else {
+          result = command->run_step(own, inputs, context);
+        }
+      } catch (const Error& e) {
+        throw_as(e.exit_code(), label + ": " + e.what());
+      }
+    }
+    if (!result) continue;
+    if (const auto o = step.find("output"); o && writer) {
+      // Credits of everything the crowd derives from are kept; the options are the whole pipeline's.
+      std::vector<std::string> credits;
+      for (const CrowdFile* c : inputs) credits.insert(credits.end(), c->provenance.credits.begin(), c->provenance.credits.end());
+      credits.insert(credits.end(), result->crowd.provenance.credits.begin(), result->crowd.provenance.credits.end());
+      result->crowd.provenance = context.provenance(job.yaml(), {job_path.string()}, credits);
+      write_crowd_file(o->as_string(), result->crowd, result->extra);
+      context.info(label + ": wrote " + o->as_string());
+    }
+    if (step.has("output")) ++written;
+    if (auto n = step.find("name")) named.insert_or_assign(n->as_string(), result->crowd);
+    last = std::move(result->crowd);
+  }
+  Report r;
+  r["job"] = job_path.string();
+  r["steps"] = steps.size();
+  r["crowd_files_written"] = written;
+  return r;
+}
+
+}  // namespace throng::cli

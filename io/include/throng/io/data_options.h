@@ -1,0 +1,33 @@
+// The option schemas (throng/core/schema.h) of the commands that read and write data files rather than run a
+// method: import (RealDatasetOptions, real_dataset.h) and plot (PlotOptions, plot.h, with the view and the
+// tiling switch). Their steps of `throng run` read the same keys.
+#pragma once
+
+#include <throng/core/schema.h>
+#include <throng/io/plot.h>
+#include <throng/io/real_dataset.h>
+
+#include <string>
+
+namespace throng {
+
+/// `fps` (absent: the dataset's known rate), `radius`, `wall_thickness`.
+void describe(OptionBinder& b, RealDatasetOptions& o);
+
+/// What `throng plot` and the `plot` step draw.
+struct PlotJob {
+  PlotOptions picture;
+  std::string view = "top";  ///< 3-D crowds: top (x, y), front (x, z: looking north) or side (y, z: looking west)
+  bool tiling = true;        ///< a file written by `throng tile` is drawn as its tiling (io/tiling_plot.h)
+};
+
+void describe(OptionBinder& b, PlotJob& job);
+
+/// What `throng check-tiling` lists.
+struct CheckTilingJob {
+  std::size_t max_failures = 1000;  ///< failures listed at most (all are counted)
+};
+
+void describe(OptionBinder& b, CheckTilingJob& job);
+
+}  // namespace throng

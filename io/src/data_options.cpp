@@ -1,0 +1,46 @@
+#include <throng/io/data_options.h>
+
+#include <optional>
+
+namespace throng {
+
+void describe(OptionBinder& b, RealDatasetOptions& o) {
+  std::optional<double> fps;  // absent: the rate known for the dataset's folder
+  if (o.video_fps > 0) fps = o.video_fps;
+  b.field({.key = "fps", .unit = "Hz", .range = Range::positive(), .flag = "--fps",
+           .help = "video frame rate of obsmat frame numbers (default: known per dataset)"},
+          fps);
+  o.video_fps = fps.value_or(0.0);
+  b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .flag = "--radius", .help = "every agent's radius"},
+          o.agent_radius);
+  b.field({.key = "wall_thickness", .unit = "m", .range = Range::non_negative(), .flag = "--wall-thickness",
+           .help = "thickness of map.xml walls"},
+          o.wall_thickness);
+}
+
+void describe(OptionBinder& b, PlotJob& job) {
+  PlotOptions& o = job.picture;
+  std::vector<std::int64_t> frames(o.frames.begin(), o.frames.end());
+  b.field({.key = "frames", .flag = "--frames", .help = "frames where agents are drawn; negative counts from the end"}, frames);
+  o.frames.assign(frames.begin(), frames.end());
+  b.field({.key = "width", .unit = "px", .range = Range::closed(200, 20000), .flag = "--width", .help = "picture width"},
+          o.width_px);
+  b.field({.key = "title", .flag = "--title", .help = "title (default: the file name)"}, o.title);
+  b.field({.key = "trajectories", .flag = "!--no-trajectories", .help = "draw the trajectories, not only the agents"},
+          o.trajectories);
+  b.field({.key = "obstacles", .flag = "!--no-obstacles", .help = "draw the obstacles"}, o.obstacles);
+  b.field({.key = "min_agent_radius", .unit = "px", .range = Range::closed(0, 100), .flag = "--min-agent-radius",
+           .help = "smallest agent disc radius"},
+          o.min_agent_radius_px);
+  b.choice({.key = "view", .flag = "--view", .help = "3-D crowds: top (x, y), front (x, z) or side (y, z)"}, job.view,
+           {"top", "front", "side"});
+  b.field({.key = "tiling", .flag = "!--no-tiling", .help = "a file written by throng tile is drawn as its patches"},
+          job.tiling);
+}
+
+void describe(OptionBinder& b, CheckTilingJob& job) {
+  b.field({.key = "max_failures", .flag = "--max-failures", .help = "list at most this many failures (all are counted)"},
+          job.max_failures);
+}
+
+}  // namespace throng

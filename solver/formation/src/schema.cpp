@@ -1,0 +1,42 @@
+#include <throng/formation/schema.h>
+
+namespace throng::formation {
+
+void describe(OptionBinder& b, Options& o) {
+  b.field({.key = "frame_rate", .unit = "Hz", .range = Range::positive(), .help = "output frames per second"}, o.frame_rate_hz);
+  b.field({.key = "tension", .range = Range::closed(0, 1), .help = "Catmull-Rom τ of Eq. 5"}, o.tension);
+  b.choice({.key = "reordering", .help = "none, greedy, or greedy then the max-min refinement (§4.2)"}, o.reordering,
+           {{"none", Reordering::none}, {"greedy", Reordering::greedy}, {"max_min", Reordering::max_min}});
+  b.choice({.key = "orientation", .help = "the PCA adjustment of §3.3"}, o.orientation,
+           {{"none", OrientationAlignment::none}, {"pca", OrientationAlignment::pca},
+            {"procrustes", OrientationAlignment::procrustes}});
+  b.field({.key = "isotropy_tolerance", .range = {0.0, 1.0, false, true},
+           .help = "below it (principal variances nearly equal) PCA uses procrustes"},
+          o.isotropy_tolerance);
+  b.field({.key = "match_individuals", .help = "keyframes' rows are not in correspondence: match them"}, o.match_individuals);
+  b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .help = "every individual's radius in the output"},
+          o.radius_m);
+  b.section("collision", [&](OptionBinder& c) {
+    CollisionOptions& k = o.collision;
+    c.field({.key = "enabled", .help = "social forces then smoothing (§4.3)"}, k.enabled);
+    c.field({.key = "min_distance", .unit = "m", .range = Range::positive(), .help = "centre to centre, at every frame"},
+            k.min_distance_m);
+    c.field({.key = "relaxation_time", .unit = "s", .range = Range::positive(), .help = "τ of the driving force"},
+            k.relaxation_time_s);
+    c.field({.key = "tracking_time", .unit = "s", .range = Range::positive(), .help = "how fast the path is tracked"},
+            k.tracking_time_s);
+    c.field({.key = "repulsion_strength", .unit = "m/s²", .range = Range::non_negative(), .help = "A of the repulsion"},
+            k.repulsion_strength_m_per_s2);
+    c.field({.key = "repulsion_range", .unit = "m", .range = Range::positive(), .help = "B of the repulsion"},
+            k.repulsion_range_m);
+    c.field({.key = "time_step", .unit = "s", .range = Range::positive(), .help = "largest simulation step"}, k.time_step_s);
+    c.field({.key = "smoothing_time", .unit = "s", .range = Range::positive(), .help = "extent of the temporal smoothing"},
+            k.smoothing_time_s);
+    c.field({.key = "smoothing_passes", .range = Range::closed(1, 1000), .help = "smoothing/projection alternations"},
+            k.smoothing_passes);
+    c.field({.key = "projection_sweeps", .range = Range::closed(1, 1e6), .help = "Gauss–Seidel sweeps per frame"},
+            k.projection_sweeps);
+  });
+}
+
+}  // namespace throng::formation
