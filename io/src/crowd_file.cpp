@@ -337,7 +337,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 
   AtomicOutput output(path);
   {
-    h5::File f = h5::File::create(output.temporary(), path.filename().string());
+    h5::File f = h5::File::create(output.descriptor_path(), path.filename().string());
     {
       const h5::Group root = f.root();
       write_h5md_header(root, file.provenance.program_version);

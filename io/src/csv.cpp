@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <string_view>
 #include <type_traits>
 
@@ -77,32 +76,26 @@ Row parse_row(std::string_view line, const std::string& where) {
 void write_csv(const std::filesystem::path& path, const CrowdMotion& motion) {
   motion.validate("CSV output");
   AtomicOutput output(path);
-  {
-    std::ofstream out(output.temporary(), std::ios::binary);
-    if (!out) throw IoError(path.string() + ": cannot be created");
-    std::string text = "time,id,x,y,z\n";
-    for (std::size_t t = 0; t < motion.frame_count(); ++t) {
-      for (std::size_t n = 0; n < motion.agent_count(); ++n) {
-        if (!motion.present(t, n)) continue;
-        const auto p = motion.position(t, n);
-        append_number(text, motion.times[t]);
+  std::string text = "time,id,x,y,z\n";
+  for (std::size_t t = 0; t < motion.frame_count(); ++t) {
+    for (std::size_t n = 0; n < motion.agent_count(); ++n) {
+      if (!motion.present(t, n)) continue;
+      const auto p = motion.position(t, n);
+      append_number(text, motion.times[t]);
+      text += ',';
+      text += std::to_string(motion.ids[n]);
+      for (int k = 0; k < 3; ++k) {
         text += ',';
-        text += std::to_string(motion.ids[n]);
-        for (int k = 0; k < 3; ++k) {
-          text += ',';
-          append_number(text, p[k]);
-        }
-        text += '\n';
+        append_number(text, p[k]);
       }
-      if (text.size() > (1u << 20)) {
-        out << text;
-        text.clear();
-      }
+      text += '\n';
     }
-    out << text;
-    out.close();
-    if (!out) throw IoError(path.string() + ": write failed (is the disk full?)");
+    if (text.size() > (1u << 20)) {
+      output.write(text);
+      text.clear();
+    }
   }
+  output.write(text);
   output.commit();
 }
 
