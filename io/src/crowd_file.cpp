@@ -86,7 +86,7 @@ void write_scene(const h5::Group& parameters, const Scene& scene) {
   }
 }
 
-Scene read_scene(const h5::Group& parameters) {
+Scene read_scene(const h5::Group& parameters, const ReadLimits& limits) {
   Scene scene;
   if (!parameters.has("scene")) return scene;
   const h5::Group g = parameters.open_group("scene");
@@ -106,6 +106,12 @@ Scene read_scene(const h5::Group& parameters) {
     }
     const auto V = static_cast<std::int64_t>(vertices.shape[0]);
     const auto M = static_cast<std::int64_t>(motion.shape[0]);
+    // The obstacles built from the arrays (K of them, V vertices and M pose keys in all), against the limit.
+    const auto bytes = checked_sum(checked_product(K, sizeof(Obstacle) + 32).value_or(UINT64_MAX),
+                                   checked_sum(checked_product(vertices.shape[0], sizeof(Eigen::Vector2d)).value_or(UINT64_MAX),
+                                               checked_product(motion.shape[0], sizeof(PoseKey)).value_or(UINT64_MAX))
+                                       .value_or(UINT64_MAX));
+    MemoryBudget(limits).charge(bytes.value_or(UINT64_MAX), o.where(), std::to_string(K) + " obstacles");
     for (std::size_t k = 0; k < K; ++k) {
       const std::int64_t v0 = vertex_offset[k], v1 = vertex_offset[k + 1];
       const std::int64_t m0 = motion_offset[k], m1 = motion_offset[k + 1];
@@ -531,7 +537,7 @@ CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& l
     p.seed = parameters.unsigned_attribute("seed").value_or(0);
     p.inputs = parameters.string_array_attribute("inputs");
     p.credits = parameters.string_array_attribute("credits");
-    out.scene = read_scene(parameters);
+    out.scene = read_scene(parameters, limits);
   }
   if (const auto box = read_periodic_box(trajectory)) {
     apply_periodic_box(*box, trajectory, m, out.scene);
