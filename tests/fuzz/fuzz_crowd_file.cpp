@@ -5,6 +5,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const throng::fuzz::InputFile file(data, size);
-  throng::fuzz::expect_only_throng_errors([&] { (void)throng::read_crowd_file(file.path(), throng::fuzz::fuzz_limits()); });
+  throng::fuzz::expect_only_throng_errors([&] { (void)throng::read_crowd_file(throng::fuzz::InputFile::path(), throng::fuzz::fuzz_limits()); });
   return 0;
 }

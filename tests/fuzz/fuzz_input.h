@@ -9,11 +9,9 @@
 #include <throng/core/errors.h>
 #include <throng/io/read_limits.h>
 
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -22,24 +20,25 @@ namespace throng::fuzz {
 
 inline ReadLimits fuzz_limits() { return ReadLimits{std::uint64_t{1} << 30}; }
 
-/// The bytes as an anonymous in-memory file (memfd), named /proc/self/fd/N for readers that open by name.
+/// The bytes as a file a reader opens by name: one file per process in a fresh temporary folder, rewritten for
+/// each input. (Not a memfd: libhdf5 resolves a file's real path when it opens it, and /proc/self/fd/N of a memfd
+/// has none, so every HDF5 input would fail before the reader saw it.)
 class InputFile {
  public:
-  InputFile(const std::uint8_t* data, std::size_t size) : fd_(::memfd_create("fuzz-input", MFD_CLOEXEC)) {
-    if (fd_ < 0) std::abort();
-    for (std::size_t done = 0; done < size;) {
-      const ssize_t n = ::write(fd_, data + done, size - done);
-      if (n <= 0) std::abort();
-      done += static_cast<std::size_t>(n);
-    }
+  InputFile(const std::uint8_t* data, std::size_t size) {
+    std::FILE* out = std::fopen(path().c_str(), "wb");
+    if (!out || (size > 0 && std::fwrite(data, 1, size, out) != size) || std::fclose(out) != 0) std::abort();
   }
-  ~InputFile() { ::close(fd_); }
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
-  [[nodiscard]] std::filesystem::path path() const { return "/proc/self/fd/" + std::to_string(fd_); }
-
- private:
-  int fd_;
+  [[nodiscard]] static const std::filesystem::path& path() {
+    static const std::filesystem::path file = [] {
+      std::string pattern = (std::filesystem::temp_directory_path() / "throng-fuzz-XXXXXX").string();
+      if (!::mkdtemp(pattern.data())) std::abort();
+      return std::filesystem::path(pattern) / "input";
+    }();
+    return file;
+  }
 };
 
 /// Runs a reader: a throng::Error (bad input refused with a message) is the expected outcome for most inputs;

@@ -7,8 +7,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const throng::fuzz::InputFile file(data, size);
   throng::fuzz::expect_only_throng_errors([&] {
-    if (throng::has_tiling_data(file.path(), throng::fuzz::fuzz_limits())) {
-      (void)throng::read_tiling_data(file.path(), throng::fuzz::fuzz_limits());
+    if (throng::has_tiling_data(throng::fuzz::InputFile::path(), throng::fuzz::fuzz_limits())) {
+      (void)throng::read_tiling_data(throng::fuzz::InputFile::path(), throng::fuzz::fuzz_limits());
     }
   });
   return 0;
