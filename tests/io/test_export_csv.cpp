@@ -8,6 +8,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -118,4 +119,57 @@ TEST_CASE("the obstacles file lists each obstacle's points where they stand") {
   crowd.scene.obstacles.clear();
   export_csv(crowd, dir / "bare.csv");
   CHECK(read_csv_rows(dir / "bare_obstacles.csv").size() == 1);  // the header alone
+}
+
+TEST_CASE("the Blender recipe of the export docs imports the csv: an object per agent at its positions and facings") {
+  const auto dir = test::scratch_dir("export_csv_blender");
+  const CrowdFile crowd = test::posed_export_crowd();
+  const CrowdMotion& m = crowd.motion;
+  export_csv(crowd, dir / "crowd.csv");
+  // The recipe exactly as docs/commands/export.md gives it (a list item's code block, indented by two spaces).
+  std::ifstream doc(test::source_dir() / "docs" / "commands" / "export.md");
+  std::string line, recipe;
+  bool inside = false;
+  while (std::getline(doc, line)) {
+    if (line == "  ```python") inside = true;
+    else if (inside && line == "  ```") break;
+    else if (inside) recipe += (line.size() >= 2 ? line.substr(2) : line) + "\n";
+  }
+  REQUIRE(recipe.find("/path/crowd.csv") != std::string::npos);
+  recipe.replace(recipe.find("/path/crowd.csv"), 15, (dir / "crowd.csv").string());
+  std::ofstream(dir / "recipe.py") << "import bpy, math\nbpy.ops.wm.read_factory_settings(use_empty=True)\n"
+                                      "bpy.context.scene.render.fps = 25\n"
+                                   << recipe << R"(
+scene = bpy.context.scene
+agents = sorted([o for o in scene.objects if o.name.startswith('agent_')], key=lambda o: int(o.name[6:]))
+print('agents', len(agents))
+for frame in (55, 60, 70):
+    scene.frame_set(frame)
+    for o in agents:
+        arrow = o.matrix_world.to_3x3() @ mathutils.Vector((0, 0, 1))
+        print('pose', frame, o.name[6:], repr(o.matrix_world.translation.x), repr(o.matrix_world.translation.y), repr(math.atan2(arrow.y, arrow.x)))
+)";
+  const std::string out = test::run_tool("blender -b --factory-startup --python " + (dir / "recipe.py").string() + " 2>&1");
+  INFO(out);
+  CHECK_THAT(out, Catch::Matchers::Contains("agents 6"));
+  std::istringstream lines(out);
+  std::size_t checked = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream in(line);
+    std::string key;
+    int frame;
+    std::int64_t id;
+    double x, y, heading;
+    if (!(in >> key) || key != "pose" || !(in >> frame >> id >> x >> y >> heading)) continue;
+    const std::size_t t = static_cast<std::size_t>(frame - 50);  // time 2 s + k / 25 s is frame 50 + k at 25 fps
+    const std::size_t n = static_cast<std::size_t>(std::find(m.ids.begin(), m.ids.end(), id) - m.ids.begin());
+    if (!m.present(t, n)) continue;  // an absent agent holds its nearest key
+    INFO("frame " << t << " agent " << id);
+    CHECK(std::abs(x - m.position(t, n).x()) < 1e-5);
+    CHECK(std::abs(y - m.position(t, n).y()) < 1e-5);
+    const Eigen::Vector3d forward = Eigen::Quaterniond(m.orientation(t, n)) * Eigen::Vector3d::UnitX();
+    CHECK(std::abs(std::remainder(heading - std::atan2(forward.y(), forward.x()), 2 * EIGEN_PI)) < 1e-5);
+    ++checked;
+  }
+  CHECK(checked == 3 * 6 - 1);  // agent 50 has left by frame 20
 }

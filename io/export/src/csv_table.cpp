@@ -1,4 +1,5 @@
 #include "agent_poses.h"
+#include "agent_ranges.h"
 #include "output_file.h"
 #include "text_numbers.h"
 
@@ -35,36 +36,36 @@ void write_rows(const CrowdFile& crowd, detail::OutputFile& file, const ExportOp
   std::string text = "frame,time,id,x,y,z,qx,qy,qz,qw,heading_deg,action,prop,radius,species\n";
   constexpr double degrees = 180.0 / 3.14159265358979323846;
   for (std::size_t t = 0; t < m.frame_count(); ++t) {
-    for (std::size_t n = 0; n < m.agent_count(); ++n) {
-      if (!poses.present(t, n)) continue;
+    detail::for_agent_ranges<std::string>(m.agent_count(), [&](std::size_t n, std::string& row) {
+      if (!poses.present(t, n)) return;
       const Eigen::Vector3d position = poses.position(t, n);
       const Eigen::Quaterniond facing = poses.facing(t, n);
-      detail::append_number(text, static_cast<std::int64_t>(t));
-      text += ',';
-      detail::append_number(text, m.times[t]);
-      text += ',';
-      detail::append_number(text, m.ids[n]);
+      detail::append_number(row, static_cast<std::int64_t>(t));
+      row += ',';
+      detail::append_number(row, m.times[t]);
+      row += ',';
+      detail::append_number(row, m.ids[n]);
       for (int k = 0; k < 3; ++k) {
-        text += ',';
-        detail::append_number(text, position[k]);
+        row += ',';
+        detail::append_number(row, position[k]);
       }
       for (int k = 0; k < 4; ++k) {
-        text += ',';
-        detail::append_number(text, facing.coeffs()[k]);
+        row += ',';
+        detail::append_number(row, facing.coeffs()[k]);
       }
-      text += ',';
-      detail::append_number(text, detail::heading(facing) * degrees);
+      row += ',';
+      detail::append_number(row, detail::heading(facing) * degrees);
       const ActionKind& action = table[static_cast<std::size_t>(poses.action(t, n))];
-      text += ',';
-      append_field(text, action.name);
-      text += ',';
-      append_field(text, action.prop);
-      text += ',';
-      detail::append_number(text, m.radii[n]);
-      text += ',';
-      detail::append_number(text, m.species[n]);
-      text += '\n';
-    }
+      row += ',';
+      append_field(row, action.name);
+      row += ',';
+      append_field(row, action.prop);
+      row += ',';
+      detail::append_number(row, m.radii[n]);
+      row += ',';
+      detail::append_number(row, m.species[n]);
+      row += '\n';
+    }, [&](const std::string& rows) { text += rows; });
     if (text.size() > flush_bytes) {
       file.write(text);
       text.clear();

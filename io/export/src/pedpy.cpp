@@ -1,4 +1,5 @@
 #include "agent_poses.h"
+#include "agent_ranges.h"
 #include "frame_rate.h"
 #include "walkable_area.h"
 
@@ -52,14 +53,14 @@ class RowWriter {
     if (!dataset_.valid()) throw IoError(where_ + ": cannot create dataset /trajectory");
   }
 
-  void append(const std::vector<Row>& rows) {
-    if (rows.empty()) return;
-    const hsize_t count = rows.size(), size = written_ + count;
+  void append(const Row* rows, std::size_t row_count) {
+    if (row_count == 0) return;
+    const hsize_t count = row_count, size = written_ + count;
     if (H5Dset_extent(dataset_.id(), &size) < 0) throw IoError(where_ + ": cannot extend /trajectory");
     h5::Handle file_space(H5Dget_space(dataset_.id()));
     H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, &written_, nullptr, &count, nullptr);
     h5::Handle memory_space(H5Screate_simple(1, &count, nullptr));
-    if (H5Dwrite(dataset_.id(), type_.id(), memory_space.id(), file_space.id(), H5P_DEFAULT, rows.data()) < 0) {
+    if (H5Dwrite(dataset_.id(), type_.id(), memory_space.id(), file_space.id(), H5P_DEFAULT, rows) < 0) {
       throw IoError(where_ + ": write of /trajectory failed (is the disk full?)");
     }
     written_ = size;
@@ -115,18 +116,18 @@ void write_pedpy(const CrowdFile& crowd, const std::filesystem::path& output, At
     std::vector<Row> rows;
     rows.reserve(chunk_rows);
     for (std::size_t t = 0; t < m.frame_count(); ++t) {
-      for (std::size_t n = 0; n < m.agent_count(); ++n) {
-        if (!m.present(t, n)) continue;
+      detail::for_agent_ranges<std::vector<Row>>(m.agent_count(), [&](std::size_t n, std::vector<Row>& part) {
+        if (!m.present(t, n)) return;
         const Eigen::Vector3d p = m.position(t, n);
         const double h = detail::heading(poses.facing(t, n));
-        rows.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), std::cos(h), std::sin(h)});
-        if (rows.size() == chunk_rows) {
-          trajectory.append(rows);
-          rows.clear();
-        }
-      }
+        part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), std::cos(h), std::sin(h)});
+      }, [&](const std::vector<Row>& part) { rows.insert(rows.end(), part.begin(), part.end()); });
+      // Whole chunks at a time (a partial chunk would be read back and rewritten).
+      std::size_t done = 0;
+      for (; rows.size() - done >= chunk_rows; done += chunk_rows) trajectory.append(rows.data() + done, chunk_rows);
+      rows.erase(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(done));
     }
-    trajectory.append(rows);
+    trajectory.append(rows.data(), rows.size());
   }
   file.close();
 }

@@ -1,4 +1,5 @@
 #include "agent_poses.h"
+#include "agent_ranges.h"
 #include "frame_rate.h"
 #include "output_file.h"
 #include "proxy_mesh.h"
@@ -68,27 +69,27 @@ class UsdWriter {
     text_ += "def Xform \"Crowd\"\n{\n    def PointInstancer \"Agents\"\n    {\n";
     constant_attributes();
     time_samples("point3f[] positions", [&](detail::AgentPoses& poses, std::size_t t) {
-      for (std::size_t n = 0; n < m_.agent_count(); ++n) {
+      per_agent(t, [&](std::size_t n, std::string& part) {
         const Eigen::Vector3d p = poses.position(t, n);
-        text_ += n ? ", (" : "(";
+        part += n ? ", (" : "(";
         for (int k = 0; k < 3; ++k) {
-          if (k) text_ += ", ";
-          detail::append_number(text_, static_cast<float>(p[k]));
+          if (k) part += ", ";
+          detail::append_number(part, static_cast<float>(p[k]));
         }
-        text_ += ')';
-      }
+        part += ')';
+      });
     });
     time_samples("quath[] orientations", [&](detail::AgentPoses& poses, std::size_t t) {
-      for (std::size_t n = 0; n < m_.agent_count(); ++n) {
+      per_agent(t, [&](std::size_t n, std::string& part) {
         const Eigen::Quaterniond q = poses.facing(t, n);
-        text_ += n ? ", (" : "(";
+        part += n ? ", (" : "(";
         const std::array<double, 4> wxyz{q.w(), q.x(), q.y(), q.z()};
         for (int k = 0; k < 4; ++k) {
-          if (k) text_ += ", ";
-          detail::append_number(text_, as_half(wxyz[static_cast<std::size_t>(k)]));
+          if (k) part += ", ";
+          detail::append_number(part, as_half(wxyz[static_cast<std::size_t>(k)]));
         }
-        text_ += ')';
-      }
+        part += ')';
+      });
     });
     time_samples("int64[] invisibleIds", [&](detail::AgentPoses& poses, std::size_t t) {
       bool first = true;
@@ -101,11 +102,11 @@ class UsdWriter {
     });
     text_ += "        int[] primvars:throng:action (\n            interpolation = \"vertex\"\n        )\n";
     time_samples("int[] primvars:throng:action", [&](detail::AgentPoses& poses, std::size_t t) {
-      for (std::size_t n = 0; n < m_.agent_count(); ++n) {
-        if (n) text_ += ", ";
+      per_agent(t, [&](std::size_t n, std::string& part) {
+        if (n) part += ", ";
         // An absent agent is invisible; its stored action is −1 (none), written as the table's first entry.
-        detail::append_number(text_, std::max(poses.action(t, n), std::int32_t{0}));
-      }
+        detail::append_number(part, std::max(poses.action(t, n), std::int32_t{0}));
+      });
     });
     prototypes();
     text_ += "    }\n}\n";
@@ -113,6 +114,12 @@ class UsdWriter {
   }
 
  private:
+  // One frame's values, agent ranges formatted in parallel and appended in order.
+  template <class Format>
+  void per_agent(std::size_t, Format format) {
+    detail::for_agent_ranges<std::string>(m_.agent_count(), format, [&](const std::string& part) { text_ += part; });
+  }
+
   void header() {
     const std::size_t T = m_.frame_count();
     text_ += "#usda 1.0\n(\n    customLayerData = {\n";
