@@ -3,9 +3,11 @@
 //
 // Cases: export_<format>/<agents>/<frames> writes the crowd held in memory (read once beforehand, the way a
 // pipeline step hands its crowd on) to a file; xdmf_from_file reads only the .h5's layout; read_crowd is the read
-// the path entry points add; derive_facing the default facing alone (PathFacing); cat_<format> copies that format's output with `cat` (page cache to page cache, as
+// the path entry points add (peak_heap_MB there is the reader's: it holds the file's arrays and the crowd's at
+// once); derive_facing the default facing alone (PathFacing); cat_<format> copies that format's output with `cat` (page cache to page cache, as
 // the export writes). Counters: MB (output size), MB_per_s, peak_heap_MB (heap held at most during the export
-// above what was held before: bench/common/heap.h), crowd_MB (the crowd's own arrays, for scale).
+// above what was held before: bench/common/heap.h), crowd_MB (the crowd's own arrays, for scale), cpu_s (CPU
+// seconds of every thread, or of cat: on a shared machine the wall time measures the scheduler).
 //
 // The crowd: agents walking at 1.3 m/s in random directions with a slow turn, 10% entering late and 10% leaving
 // early; without stored facing or actions, so every export derives them from the paths (PathFacing), as it
@@ -23,6 +25,8 @@
 #include "../common/heap.h"
 
 #include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
@@ -73,6 +77,14 @@ const CrowdFile& crowd(std::size_t agents, std::size_t frames) {
   return f;
 }
 
+// CPU seconds (user + system) of this process's threads, or of its finished children (cat): on a shared machine
+// the wall time is the share the scheduler gave, the CPU time what the work cost.
+double cpu_seconds(int who) {
+  struct rusage u {};
+  getrusage(who, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 // A file for this case's size: out_<agents>_<frames><extension>.
 std::filesystem::path sized(const benchmark::State& state, const std::string& stem, const std::string& extension) {
   return folder() / (stem + "_" + std::to_string(state.range(0)) + "_" + std::to_string(state.range(1)) + extension);
@@ -82,27 +94,30 @@ double crowd_mb(const CrowdFile& f) {
   return static_cast<double>(f.motion.positions.size() * 8 + f.motion.ids.size() * 24) / (1 << 20);
 }
 
-void report(benchmark::State& state, const std::filesystem::path& output, double seconds, double peak) {
+void report(benchmark::State& state, const std::filesystem::path& output, double seconds, double peak, double cpu) {
   const double mb = static_cast<double>(std::filesystem::file_size(output)) / (1 << 20);
   state.counters["MB"] = mb;
   state.counters["MB_per_s"] = mb / seconds;
   state.counters["peak_heap_MB"] = peak;
+  state.counters["cpu_s"] = cpu;
 }
 
 template <class Export>
 void run(benchmark::State& state, const char* extension, Export export_to) {
   const CrowdFile& f = crowd(static_cast<std::size_t>(state.range(0)), static_cast<std::size_t>(state.range(1)));
   const auto output = sized(state, "out", extension);
-  double seconds = 0, peak = 0;
+  double seconds = 0, peak = 0, cpu = 0;
   for (auto _ : state) {
     bench::HeapPeak heap;
+    const double cpu0 = cpu_seconds(RUSAGE_SELF);
     const auto start = std::chrono::steady_clock::now();
     export_to(f, output);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpu = cpu_seconds(RUSAGE_SELF) - cpu0;
     peak = heap.stop();
     state.SetIterationTime(seconds);
   }
-  report(state, output, seconds, peak);
+  report(state, output, seconds, peak, cpu);
   state.counters["crowd_MB"] = crowd_mb(f);
 }
 
@@ -115,14 +130,16 @@ void cat(benchmark::State& state, const char* extension) {
     return;
   }
   const std::string command = "cat '" + input.string() + "' > '" + output.string() + "'";
-  double seconds = 0;
+  double seconds = 0, cpu = 0;
   for (auto _ : state) {
+    const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
     const auto start = std::chrono::steady_clock::now();
     if (std::system(command.c_str()) != 0) state.SkipWithError("cat failed");
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
     state.SetIterationTime(seconds);
   }
-  report(state, output, seconds, 0);
+  report(state, output, seconds, 0, cpu);
 }
 
 void export_csv_case(benchmark::State& s) { run(s, ".csv", [](const CrowdFile& f, const auto& o) { export_csv(f, o); }); }
@@ -139,16 +156,18 @@ void xdmf_from_file(benchmark::State& s) {
 void read_crowd(benchmark::State& s) {
   const auto crowd_file = sized(s, "crowd", ".h5");
   write_crowd_file(crowd_file, crowd(static_cast<std::size_t>(s.range(0)), static_cast<std::size_t>(s.range(1))));
-  double seconds = 0, peak = 0;
+  double seconds = 0, peak = 0, cpu = 0;
   for (auto _ : s) {
     bench::HeapPeak heap;
+    const double cpu0 = cpu_seconds(RUSAGE_SELF);
     const auto start = std::chrono::steady_clock::now();
     benchmark::DoNotOptimize(read_crowd_file(crowd_file));
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpu = cpu_seconds(RUSAGE_SELF) - cpu0;
     peak = heap.stop();
     s.SetIterationTime(seconds);
   }
-  report(s, crowd_file, seconds, peak);
+  report(s, crowd_file, seconds, peak, cpu);
 }
 // The default facing alone (PathFacing over every agent and frame, in frame order as the text formats ask).
 void derive_facing(benchmark::State& s) {

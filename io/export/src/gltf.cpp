@@ -84,35 +84,47 @@ class GltfWriter {
   }
 
  private:
+  // A JSON array built item by item as text, so a crowd of 10,000 agents costs its text (~1 kB per agent), not
+  // a document tree ten times that.
+  struct JsonList {
+    std::string text;
+    std::size_t count = 0;
+    std::size_t push(const json& item) {
+      if (count) text += ',';
+      text += item.dump();
+      return count++;
+    }
+    [[nodiscard]] std::string array() const { return "[" + text + "]"; }
+  };
+
   // The JSON document; fills the BIN layout (offsets and bin_size_) as it goes.
   std::string document() {
     const std::size_t T = m_.frame_count(), N = m_.agent_count();
     const detail::ProxyMesh& mesh = detail::proxy_mesh();
-    json accessors = json::array(), views = json::array(), nodes = json::array(), samplers = json::array(),
-         channels = json::array();
+    JsonList accessors, views, nodes, samplers, channels;
     auto view = [&](std::size_t bytes, int target) {
       json v{{"buffer", 0}, {"byteOffset", bin_size_}, {"byteLength", bytes}};
       if (target) v["target"] = target;
-      views.push_back(v);
       bin_size_ += padded(bytes);
-      return views.size() - 1;
+      return views.push(v);
     };
-    auto accessor = [&](std::size_t view_index, std::size_t offset, int type, std::size_t count, const char* shape) {
-      accessors.push_back({{"bufferView", view_index}, {"byteOffset", offset}, {"componentType", type}, {"count", count}, {"type", shape}});
-      return accessors.size() - 1;
+    auto accessor = [&](std::size_t view_index, std::size_t offset, int type, std::size_t count, const char* shape,
+                        const json& min = nullptr, const json& max = nullptr) {
+      json a{{"bufferView", view_index}, {"byteOffset", offset}, {"componentType", type}, {"count", count}, {"type", shape}};
+      if (!min.is_null()) a["min"] = min, a["max"] = max;
+      return accessors.push(a);
     };
-    // Frame times.
+    // Frame times (an animation input states its bounds).
     const std::size_t times_view = view(T * 4, 0);
-    const std::size_t times = accessor(times_view, 0, float_type, T, "SCALAR");
-    accessors[times]["min"] = {static_cast<float>(0.0)};
-    accessors[times]["max"] = {static_cast<float>(m_.times.back() - m_.times.front())};
-    // Proxy mesh.
+    const std::size_t times = accessor(times_view, 0, float_type, T, "SCALAR", json::array({0.0f}),
+                                       json::array({static_cast<float>(m_.times.back() - m_.times.front())}));
+    // Proxy mesh (POSITION states its bounds).
     const std::size_t positions_view = view(mesh.vertices.size() * 12, 34962);
-    const std::size_t mesh_positions = accessor(positions_view, 0, float_type, mesh.vertices.size(), "VEC3");
     Eigen::AlignedBox3f box;
     for (const auto& v : mesh.vertices) box.extend(local_vertex(v));
-    accessors[mesh_positions]["min"] = {box.min().x(), box.min().y(), box.min().z()};
-    accessors[mesh_positions]["max"] = {box.max().x(), box.max().y(), box.max().z()};
+    const std::size_t mesh_positions =
+        accessor(positions_view, 0, float_type, mesh.vertices.size(), "VEC3", json::array({box.min().x(), box.min().y(), box.min().z()}),
+                 json::array({box.max().x(), box.max().y(), box.max().z()}));
     const std::size_t indices_view = view(mesh.triangles.size() * 6, 34963);
     const std::size_t mesh_indices = accessor(indices_view, 0, ushort_type, mesh.triangles.size() * 3, "SCALAR");
     // Per-agent animation outputs, agent-major.
@@ -126,56 +138,51 @@ class GltfWriter {
       const std::size_t base = n * T * 28;
       const std::size_t translation = accessor(outputs_view, base, float_type, T, "VEC3");
       const std::size_t rotation = accessor(outputs_view, base + T * 12, float_type, T, "VEC4");
-      const std::size_t node = nodes.size();
-      samplers.push_back({{"input", times}, {"output", translation}, {"interpolation", "LINEAR"}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", "translation"}}}});
-      samplers.push_back({{"input", times}, {"output", rotation}, {"interpolation", "LINEAR"}});
-      channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", "rotation"}}}});
+      const std::size_t node = n;
+      channels.push({{"sampler", samplers.push({{"input", times}, {"output", translation}, {"interpolation", "LINEAR"}})},
+                     {"target", {{"node", node}, {"path", "translation"}}}});
+      channels.push({{"sampler", samplers.push({{"input", times}, {"output", rotation}, {"interpolation", "LINEAR"}})},
+                     {"target", {{"node", node}, {"path", "rotation"}}}});
       const float r = static_cast<float>(m_.radii[n]);
-      const bool present = m_.present(0, n);
       if (!keys_[n].empty()) {
         const std::size_t K = keys_[n].size();
-        const std::size_t input = accessor(keys_view, key_cursor, float_type, K, "SCALAR");
-        accessors[input]["min"] = {static_cast<float>(m_.times[keys_[n].front()] - m_.times.front())};
-        accessors[input]["max"] = {static_cast<float>(m_.times[keys_[n].back()] - m_.times.front())};
+        const std::size_t input = accessor(keys_view, key_cursor, float_type, K, "SCALAR",
+                                           json::array({static_cast<float>(m_.times[keys_[n].front()] - m_.times.front())}),
+                                           json::array({static_cast<float>(m_.times[keys_[n].back()] - m_.times.front())}));
         const std::size_t output = accessor(keys_view, key_cursor + K * 4, float_type, K, "VEC3");
         key_cursor += K * 16;
-        samplers.push_back({{"input", input}, {"output", output}, {"interpolation", "STEP"}});
-        channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", node}, {"path", "scale"}}}});
+        channels.push({{"sampler", samplers.push({{"input", input}, {"output", output}, {"interpolation", "STEP"}})},
+                       {"target", {{"node", node}, {"path", "scale"}}}});
       }
       const Eigen::Vector3d p = to_gltf(first.position(0, n));
       const Eigen::Quaterniond q = node_rotation(first.facing(0, n));
-      const float s = present ? r : 0.0f;
-      nodes.push_back({{"name", "agent_" + std::to_string(m_.ids[n])},
-                       {"mesh", 0},
-                       {"translation", {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}},
-                       {"rotation", {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())}},
-                       {"scale", {s, s, s}},
-                       {"extras", {{"id", m_.ids[n]}, {"species", m_.species[n]}, {"radius", m_.radii[n]}}}});
+      const float s = m_.present(0, n) ? r : 0.0f;
+      nodes.push({{"name", "agent_" + std::to_string(m_.ids[n])},
+                  {"mesh", 0},
+                  {"translation", {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}},
+                  {"rotation", {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())}},
+                  {"scale", {s, s, s}},
+                  {"extras", {{"id", m_.ids[n]}, {"species", m_.species[n]}, {"radius", m_.radii[n]}}}});
     }
-    json node_list = json::array();
-    for (std::size_t n = 0; n < N; ++n) node_list.push_back(n);
+    std::string node_list;
+    for (std::size_t n = 0; n < N; ++n) node_list += (n ? "," : "") + std::to_string(n);
     json names = json::array(), props = json::array();
     for (const ActionKind& a : first.action_table()) {
       names.push_back(a.name);
       props.push_back(a.prop);
     }
-    const json doc{
-        {"asset",
-         {{"version", "2.0"},
-          {"generator", "throng " + crowd_.provenance.program_version},
-          {"extras",
-           {{"throng",
-             {{"start_time_s", m_.times.front()}, {"credits", crowd_.provenance.credits}, {"action_names", names}, {"action_props", props}}}}}}},
-        {"scene", 0},
-        {"scenes", json::array({{{"name", "crowd"}, {"nodes", node_list}}})},
-        {"nodes", nodes},
-        {"meshes", json::array({{{"name", "agent_proxy"}, {"primitives", json::array({{{"attributes", {{"POSITION", mesh_positions}}}, {"indices", mesh_indices}, {"mode", 4}}})}}})},
-        {"animations", json::array({{{"name", "crowd"}, {"samplers", samplers}, {"channels", channels}}})},
-        {"accessors", accessors},
-        {"bufferViews", views},
-        {"buffers", json::array({{{"byteLength", bin_size_}}})}};
-    return doc.dump();
+    const json asset{{"version", "2.0"},
+                     {"generator", "throng " + crowd_.provenance.program_version},
+                     {"extras",
+                      {{"throng",
+                        {{"start_time_s", m_.times.front()}, {"credits", crowd_.provenance.credits}, {"action_names", names}, {"action_props", props}}}}}};
+    const json meshes = json::array(
+        {{{"name", "agent_proxy"}, {"primitives", json::array({{{"attributes", {{"POSITION", mesh_positions}}}, {"indices", mesh_indices}, {"mode", 4}}})}}});
+    return "{\"asset\":" + asset.dump() + ",\"scene\":0,\"scenes\":[{\"name\":\"crowd\",\"nodes\":[" + node_list +
+           "]}],\"nodes\":" + nodes.array() + ",\"meshes\":" + meshes.dump() +
+           ",\"animations\":[{\"name\":\"crowd\",\"samplers\":" + samplers.array() + ",\"channels\":" + channels.array() +
+           "}],\"accessors\":" + accessors.array() + ",\"bufferViews\":" + views.array() +
+           ",\"buffers\":[{\"byteLength\":" + std::to_string(bin_size_) + "}]}";
   }
 
   static Eigen::Vector3f local_vertex(const Eigen::Vector3f& body) { return (body_to_local.cast<float>() * body); }

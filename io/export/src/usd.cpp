@@ -69,7 +69,7 @@ class UsdWriter {
     text_ += "def Xform \"Crowd\"\n{\n    def PointInstancer \"Agents\"\n    {\n";
     constant_attributes();
     time_samples("point3f[] positions", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent(t, [&](std::size_t n, std::string& part) {
+      per_agent([&](std::size_t n, std::string& part) {
         const Eigen::Vector3d p = poses.position(t, n);
         part += n ? ", (" : "(";
         for (int k = 0; k < 3; ++k) {
@@ -80,7 +80,7 @@ class UsdWriter {
       });
     });
     time_samples("quath[] orientations", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent(t, [&](std::size_t n, std::string& part) {
+      per_agent([&](std::size_t n, std::string& part) {
         const Eigen::Quaterniond q = poses.facing(t, n);
         part += n ? ", (" : "(";
         const std::array<double, 4> wxyz{q.w(), q.x(), q.y(), q.z()};
@@ -102,7 +102,7 @@ class UsdWriter {
     });
     text_ += "        int[] primvars:throng:action (\n            interpolation = \"vertex\"\n        )\n";
     time_samples("int[] primvars:throng:action", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent(t, [&](std::size_t n, std::string& part) {
+      per_agent([&](std::size_t n, std::string& part) {
         if (n) part += ", ";
         // An absent agent is invisible; its stored action is −1 (none), written as the table's first entry.
         detail::append_number(part, std::max(poses.action(t, n), std::int32_t{0}));
@@ -116,7 +116,7 @@ class UsdWriter {
  private:
   // One frame's values, agent ranges formatted in parallel and appended in order.
   template <class Format>
-  void per_agent(std::size_t, Format format) {
+  void per_agent(Format format) {
     detail::for_agent_ranges<std::string>(m_.agent_count(), format, [&](const std::string& part) { text_ += part; });
   }
 

@@ -21,8 +21,8 @@
 
 namespace throng {
 
-/// Writes `output` (by default the crowd's name with .xmf) atomically, referring to `crowd` by its path relative
-/// to the .xmf's folder. Reads the crowd's layout and frame times only. IoError / InputError for a missing or
+/// Writes `output` (conventionally the crowd's name with .xmf, beside it) atomically, referring to `crowd` by its
+/// path relative to the .xmf's folder. Reads the crowd's layout and frame times only. IoError / InputError for a missing or
 /// malformed crowd file, IoError when the output folder does not exist.
 void export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path& output);
 
