@@ -143,6 +143,22 @@ std::optional<Eigen::Vector3d> path_velocity(const CrowdMotion& m, std::size_t t
 Eigen::Quaterniond facing_along(const Eigen::Vector3d& d) {
   const double ground = std::hypot(d.x(), d.y());
   if (ground == 0.0 && d.z() == 0.0) return Eigen::Quaterniond::Identity();
+  if (d.z() == 0.0) {
+    // A yaw θ about +z: (w, z) = (cos θ/2, sin θ/2), the unit bisector of +x and u = (cos θ, sin θ), found without
+    // trigonometry (the exporters ask this for every agent and frame). u + x̂ = 2 cos(θ/2) (cos θ/2, sin θ/2)
+    // loses its digits as θ → π, so for cos θ < 0 the bisector comes from u − x̂ = 2 sin(θ/2) (−sin θ/2, cos θ/2).
+    const double c = d.x() / ground, s = d.y() / ground;
+    double w, z;
+    if (c >= 0) {
+      const double norm = std::sqrt(2.0 * (1.0 + c));
+      w = (1.0 + c) / norm, z = s / norm;
+    } else {
+      const double norm = std::sqrt(2.0 * (1.0 - c));
+      const double sign = s < 0 ? -1.0 : 1.0;  // sign of sin(θ/2) = sign of θ in (−π, π]
+      w = sign * s / norm, z = sign * (1.0 - c) / norm;
+    }
+    return Eigen::Quaterniond(w, 0.0, 0.0, z);
+  }
   const double yaw = ground > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
   const double pitch = std::atan2(d.z(), ground);
   // R_y(−pitch) lifts +x toward +z; R_z(yaw) then turns it about the vertical.
