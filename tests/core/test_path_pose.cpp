@@ -48,7 +48,7 @@ TEST_CASE("facing_along turns +x onto the direction, without roll") {
   CHECK(q.y() == 0);
 }
 
-TEST_CASE("a walking agent faces along its path; a standing agent keeps its last facing") {
+TEST_CASE("a walking agent faces along its path, a standing agent keeps its last facing") {
   // East at 1.2 m/s for 1 s, stands 1 s, north at 1.2 m/s for 1 s.
   const CrowdMotion m = one_agent(31, [](double t) {
     if (t <= 1.0 + 1e-9) return Eigen::Vector3d(1.2 * t, 0, 0);
@@ -67,7 +67,7 @@ TEST_CASE("a walking agent faces along its path; a standing agent keeps its last
   }
 }
 
-TEST_CASE("an agent standing at the start faces where it first walks; one that never moves faces +x") {
+TEST_CASE("an agent standing at the start faces where it first walks, one that never moves faces +x") {
   const double heading = 2.5;
   const Eigen::Vector3d dir(std::cos(heading), std::sin(heading), 0);
   CrowdMotion m = one_agent(20, [&](double t) { return t < 1.0 - 1e-9 ? Eigen::Vector3d(3, 4, 0) : Eigen::Vector3d(Eigen::Vector3d(3, 4, 0) + 1.4 * (t - 1.0) * dir); });
