@@ -30,7 +30,7 @@ CrowdMotion one_agent(std::size_t frames, Path path) {
 }  // namespace
 
 TEST_CASE("facing_along turns +x onto the direction, without roll") {
-  for (const Eigen::Vector3d d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0.3, 0), Eigen::Vector3d(0, -2, 0),
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0.3, 0), Eigen::Vector3d(0, -2, 0),
                                   Eigen::Vector3d(3, 4, 5), Eigen::Vector3d(-0.2, 0.1, -1)}) {
     const Eigen::Quaterniond q = facing_along(d);
     INFO("direction " << d.transpose());
