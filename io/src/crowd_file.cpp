@@ -1,3 +1,5 @@
+#include "crowd_file_pose.h"
+
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/checked_numbers.h>
@@ -355,6 +357,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       position.set_attribute_on("time", "unit", "s");
       write_box(trajectory, file.scene, T);
       if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false);
+      detail::write_pose_elements(trajectory, m);
 
       std::vector<std::int64_t> per_frame_id(T * N);
       for (std::uint64_t t = 0; t < T; ++t) {
@@ -515,6 +518,7 @@ CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& l
     if (velocity.shape != shape) throw InputError(trajectory.where("velocity/value") + ": shape differs from position/value");
     m.velocities = std::move(velocity.values);
   }
+  detail::read_pose_elements(trajectory, m);
 
   if (root.has("connectivity/formation_edges")) {
     const auto edges = root.open_group("connectivity").read_int32("formation_edges", 2);
