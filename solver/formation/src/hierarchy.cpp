@@ -1,6 +1,6 @@
 #include "hierarchy.h"
 
-#include "dense.h"
+#include "fiedler.h"
 
 #include <throng/core/errors.h>
 
@@ -51,30 +51,6 @@ void flatten(const Group& group, int parent, int depth, const std::string& path,
     const auto& below = tree.nodes[static_cast<std::size_t>(child)].individuals;
     node.individuals.insert(node.individuals.end(), below.begin(), below.end());
   }
-}
-
-// Fiedler vector of the subgraph induced on `subset` (the eigenvector of the second smallest Laplacian eigenvalue),
-// sign fixed so its largest-magnitude entry is positive.
-Eigen::VectorXd fiedler_vector(const Adjacency& graph, const std::vector<int>& subset) {
-  const auto m = static_cast<Eigen::Index>(subset.size());
-  std::vector<int> local(static_cast<std::size_t>(graph.count), -1);
-  for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(subset[static_cast<std::size_t>(i)])] = static_cast<int>(i);
-  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(m, m);
-  for (const auto& [edge, weight] : graph.weights) {
-    const int a = local[static_cast<std::size_t>(edge.first)], b = local[static_cast<std::size_t>(edge.second)];
-    if (a < 0 || b < 0) continue;
-    l(a, b) -= weight;
-    l(b, a) -= weight;
-    l(a, a) += weight;
-    l(b, b) += weight;
-  }
-  Eigen::VectorXd values;
-  dense::symmetric_eigen(l, values);
-  Eigen::VectorXd f = l.col(1);
-  Eigen::Index largest = 0;
-  f.cwiseAbs().maxCoeff(&largest);
-  if (f(largest) < 0) f = -f;
-  return f;
 }
 
 // Splits `subset` into `parts` groups of proportional sizes by recursive Fiedler bisection.
