@@ -36,6 +36,8 @@ void check_options(const Options& o) {
           "formation.isotropy_tolerance: " + std::to_string(o.isotropy_tolerance) + " must be in [0, 1)");
   require(o.auto_group_size == 0 || o.auto_group_size >= 2,
           "formation.auto_group_size: " + std::to_string(o.auto_group_size) + " must be 0 (flat) or at least 2");
+  require(o.auto_cluster_size >= 2,
+          "formation.auto_cluster_size: " + std::to_string(o.auto_cluster_size) + " must be at least 2 (items per group)");
   require(std::isfinite(o.radius_m) && o.radius_m >= 0, "formation.radius: " + std::to_string(o.radius_m) + " must be ≥ 0 (metres)");
   const CollisionOptions& c = o.collision;
   if (!c.enabled) return;
@@ -221,7 +223,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
   if (problem.hierarchy) {
     result.hierarchy = *problem.hierarchy;
   } else if (options.auto_group_size > 0 && n > options.auto_group_size) {
-    result.hierarchy = cluster_hierarchy(summed_graph(problem, edits), options.auto_group_size);
+    result.hierarchy = cluster_hierarchy(summed_graph(problem, edits), std::min(options.auto_group_size, options.auto_cluster_size));
   } else {
     result.hierarchy = root_of_everyone(n);
   }

@@ -46,7 +46,9 @@
 //   9. Hierarchy (§4.4): a tree of groups; each group runs steps 1–8 on its items (its direct members and the
 //      barycentres of its subgroups) relative to its own barycentre, whose path comes from the parent group.
 //      Without a tree, one is built by spectral clustering (recursive Fiedler bisection of the graph summed
-//      over the keyframes) when there are more individuals than Options::auto_group_size (default 2,000).
+//      over the keyframes; sparse Lanczos beyond 400 items, fiedler.h) when there are more individuals than
+//      Options::auto_group_size (default 2,000), with groups of at most Options::auto_cluster_size items
+//      (default 250).
 //  10. Collision avoidance (§4.3): social forces (Helbing & Molnár 1995) drive each individual along its spectral
 //      path while individuals repel; then the paths are smoothed (keyframe frames pinned) while a minimum distance
 //      is kept by projection at every frame.
@@ -73,11 +75,19 @@ namespace throng::formation {
 
 /// Without a given hierarchy, a group of more individuals than this is split automatically (Options::
 /// auto_group_size, §4.4: the "built automatically by spectral clustering when not given"). Up to it
-/// one flat group stays within the time targets (a flat 2,000 × 1,000 frames: about 12 s on the 2-core
+/// one flat group stays within the time targets (a flat 2,000 × 1,000 frames: about 5 s on the 2-core
 /// machine with OpenBLAS's right kernels); beyond it the O(n³) eigen-analysis and O(n²) memory per keyframe of
-/// one group grow quickly, while clustering keeps every group at most this size. The paper's limit of 60 per
-/// group is a limit of its eigensolver, not of the method, so flat groups far larger are kept flat.
+/// one group grow quickly. The paper's limit of 60 per group is a limit of its eigensolver, not of the method,
+/// so flat groups far larger are kept flat.
 inline constexpr int default_auto_group_size = 2000;
+
+/// The largest group the automatic clustering builds (Options::auto_cluster_size). A hierarchy of groups of m
+/// items costs about N·(a·m² + b·m·frames) for N individuals: the eigen-analyses (a few m³ per group) and the
+/// per-frame products (m² per group and frame). Measured on a 10,000-individual transition × 1,000 frames
+/// (2 cores, shared, CPU time of the whole call): groups of 2,000 (the flat limit) 43 s, 1,000 12 s, 500 5.7 s,
+/// 250 3.3 s, 100 2.8 s. 250 keeps 10,000 individuals well inside 5 s and groups large enough that
+/// neighbourhoods of hundreds move as the spectral method moves them; smaller groups save little more.
+inline constexpr int default_auto_cluster_size = 250;
 
 /// How target eigenvectors are paired with source eigenvectors (§4.2).
 enum class Reordering {
@@ -119,8 +129,10 @@ struct Options {
   bool match_individuals = false;    ///< rows of keyframes k ≥ 1 are not in correspondence with keyframe 0:
                                      ///< match them (minimum summed squared distance after alignment)
   int auto_group_size = default_auto_group_size;  ///< no hierarchy given and more individuals than this
-                                     ///< (≥ 2): one is built by spectral clustering with at most this many items
-                                     ///< per group; 0 = always flat
+                                     ///< (≥ 2): one is built by spectral clustering with at most
+                                     ///< min(auto_group_size, auto_cluster_size) items per group; 0 = always flat
+  int auto_cluster_size = default_auto_cluster_size;  ///< (≥ 2) the largest group of a hierarchy built
+                                     ///< automatically (see default_auto_cluster_size)
   double radius_m = 0.25;            ///< radius written for every individual
   CollisionOptions collision;
 };
