@@ -1,5 +1,6 @@
 #include "hierarchy.h"
 
+#include "dense.h"
 #include "fiedler.h"
 
 #include <throng/core/errors.h>
@@ -53,7 +54,8 @@ void flatten(const Group& group, int parent, int depth, const std::string& path,
   }
 }
 
-// Splits `subset` into `parts` groups of proportional sizes by recursive Fiedler bisection.
+// Splits `subset` into `parts` groups of proportional sizes by recursive Fiedler bisection; the two halves
+// are split in parallel (independent: the same result whatever the thread count), `out` in a fixed order.
 void split(const Adjacency& graph, std::vector<int> subset, int parts, std::vector<std::vector<int>>& out) {
   if (parts <= 1 || subset.size() <= 1) {
     out.push_back(std::move(subset));
@@ -71,8 +73,13 @@ void split(const Adjacency& graph, std::vector<int> subset, int parts, std::vect
   for (std::size_t i = 0; i < order.size(); ++i) (i < cut ? left : right).push_back(subset[order[i]]);
   std::sort(left.begin(), left.end());
   std::sort(right.begin(), right.end());
-  split(graph, std::move(left), left_parts, out);
-  split(graph, std::move(right), parts - left_parts, out);
+  std::vector<int>* halves[2] = {&left, &right};
+  const int half_parts[2] = {left_parts, parts - left_parts};
+  std::vector<std::vector<int>> pieces[2];
+  const double work = 1e4 * static_cast<double>(subset.size());  // sparse Lanczos: products of ~1e4 flops per item
+  dense::for_each(2, work, [&](std::size_t h) { split(graph, std::move(*halves[h]), half_parts[h], pieces[h]); });
+  for (auto& piece : pieces)
+    for (auto& group : piece) out.push_back(std::move(group));
 }
 
 Group build(const Adjacency& graph, std::vector<int> individuals, int group_size, const std::string& name) {
