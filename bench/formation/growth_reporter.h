@@ -7,6 +7,7 @@
 #pragma once
 
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,9 @@ namespace throng::bench {
 
 class GrowthReporter : public benchmark::ConsoleReporter {
  public:
+  /// Tabular, coloured on a terminal only (the library's own choice; --benchmark_color is not visible here).
+  GrowthReporter() : benchmark::ConsoleReporter(isatty(fileno(stdout)) ? OO_Defaults : OO_Tabular) {}
+
   void ReportRuns(const std::vector<Run>& runs) override {
     benchmark::ConsoleReporter::ReportRuns(runs);
     for (const Run& run : runs) {

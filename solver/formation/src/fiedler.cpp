@@ -4,6 +4,7 @@
 
 #include <throng/core/errors.h>
 
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Spectra/SymEigsShiftSolver.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace throng::formation {
 namespace {
@@ -31,26 +33,43 @@ constexpr int restarts = 1000;
 constexpr double relative_shift = 1e-7;
 // Shift of plain Lanczos, relative to the largest weighted degree (see LiftedLaplacian).
 constexpr double plain_shift = 1e-3;
-// Largest factorisation worth making, per item, in Σ c_k² (see SparseLdlt): an eighth of what plain Lanczos
-// costs at the least (about 300 products of ~270 m flops with 64 basis vectors). A crowd graph whose keyframes
-// keep neighbours together is nearly planar, with small separators: measured Σ c_k² = 1.2e7 at 10,000
-// individuals (0.05 s), under the 1e8 allowed. A graph summed over keyframes that reshuffle the crowd is an
-// expander without small separators: its factor is nearly dense (Σ c_k² = 1.4e8 at only 1,250 individuals,
-// 7.3e10 at 10,000: minutes), but its λ2 is large, and plain Lanczos converges in a few hundred products (313 at
-// 10,000), where on the planar graph it needs about 1,500.
-constexpr double factor_cost_per_item = 1e4;
+// Largest sparse factor worth making, in entries per item. A crowd graph whose keyframes keep neighbours
+// together is nearly planar, with small separators, and its factor in AMD order is small: measured on one
+// scatter's Delaunay graph, 11, 17, 27 entries per item at 625, 5,000, 50,000 individuals (1.2e7 flops, 0.03 s
+// at 10,000). A graph summed over keyframes that reshuffle the crowd is an expander without small separators:
+// its factor is nearly dense (122, 240, 1,855 entries per item at 625, 1,250, 10,000: 7.3e10 flops and 220 MB
+// at 10,000), but its λ2 is large, and plain Lanczos on L converges in a few hundred products (313 at 10,000),
+// where on the planar graph it needs about 1,500.
+constexpr std::size_t factor_entries_per_item = 200;
 
-// Eigen's LDLᵀ with AMD ordering, and the cost of its factorisation once the pattern is analysed
-// (Σ_k c_k², c_k the entries below the diagonal of column k of L: what its column-by-column updates cost).
-class SparseLdlt : public Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> {
- public:
-  [[nodiscard]] double factor_flops() const {
-    double flops = 0.0;
-    for (Eigen::Index k = 0; k < this->m_nonZerosPerCol.size(); ++k)
-      flops += static_cast<double>(this->m_nonZerosPerCol(k)) * static_cast<double>(this->m_nonZerosPerCol(k));
-    return flops;
+using Factor = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>;  // AMD ordering
+
+// Entries below the diagonal of the LDLᵀ factor of the symmetric matrix whose lower triangle is `lower`, in the
+// AMD order Factor uses, counted along the elimination tree as Factor's own analysis counts them; but the count
+// stops as soon as it passes `budget` (returning more than the budget) and nothing of the factor is allocated:
+// Factor's analysis would allocate the whole predicted factor of an expander before anything could decline it.
+std::size_t factor_entries(const SparseMatrix& lower, std::size_t budget) {
+  const Eigen::Index m = lower.rows();
+  const SparseMatrix full = lower.selfadjointView<Eigen::Lower>();
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse_order;
+  Eigen::AMDOrdering<int>()(full, inverse_order);
+  SparseMatrix permuted(m, m);
+  permuted.selfadjointView<Eigen::Upper>() = lower.selfadjointView<Eigen::Lower>().twistedBy(inverse_order.inverse());
+  std::vector<int> parent(static_cast<std::size_t>(m), -1), mark(static_cast<std::size_t>(m), -1);
+  std::size_t entries = 0;
+  for (int k = 0; k < static_cast<int>(m); ++k) {
+    // Row k of L: every node reachable in the elimination tree from the entries of column k above the diagonal.
+    mark[static_cast<std::size_t>(k)] = k;
+    for (SparseMatrix::InnerIterator it(permuted, k); it; ++it) {
+      for (int i = static_cast<int>(it.row()); i < k && mark[static_cast<std::size_t>(i)] != k; i = parent[static_cast<std::size_t>(i)]) {
+        if (parent[static_cast<std::size_t>(i)] < 0) parent[static_cast<std::size_t>(i)] = k;
+        mark[static_cast<std::size_t>(i)] = k;
+        if (++entries > budget) return entries;
+      }
+    }
   }
-};
+  return entries;
+}
 
 // The Laplacian (lower triangle) with the constant vector's eigenvalue 0 moved to `lift` above the spectrum, so
 // the smallest eigenvalue of the result is λ2, and everything shifted up by `shift`: L + lift · 11ᵀ/m + shift · I.
@@ -82,7 +101,7 @@ class LiftedLaplacian {
 class ProjectedShiftSolve {
  public:
   using Scalar = double;
-  explicit ProjectedShiftSolve(const SparseLdlt& factor, Eigen::Index size) : factor_(factor), size_(size) {}
+  explicit ProjectedShiftSolve(const Factor& factor, Eigen::Index size) : factor_(factor), size_(size) {}
   [[nodiscard]] Eigen::Index rows() const { return size_; }
   [[nodiscard]] Eigen::Index cols() const { return size_; }
   void set_shift(double) {}  // the factor is made with the shift already (fiedler_by_shift_invert)
@@ -94,7 +113,7 @@ class ProjectedShiftSolve {
   }
 
  private:
-  const SparseLdlt& factor_;
+  const Factor& factor_;
   Eigen::Index size_;
 };
 
@@ -150,11 +169,9 @@ Eigen::VectorXd sparse_fiedler(const SparseMatrix& lower, FiedlerSolver solver) 
   const double sigma = -relative_shift * largest_degree;
   SparseMatrix shifted = lower;
   for (Eigen::Index i = 0; i < m; ++i) shifted.coeffRef(i, i) -= sigma;
-  SparseLdlt factor;
-  if (solver != FiedlerSolver::lanczos) factor.analyzePattern(shifted);
-  if (solver == FiedlerSolver::shift_invert ||
-      (solver == FiedlerSolver::automatic && factor.factor_flops() <= factor_cost_per_item * static_cast<double>(m))) {
-    factor.factorize(shifted);
+  const auto budget = factor_entries_per_item * static_cast<std::size_t>(m);
+  if (solver == FiedlerSolver::shift_invert || (solver == FiedlerSolver::automatic && factor_entries(lower, budget) <= budget)) {
+    const Factor factor(shifted);
     if (factor.info() == Eigen::Success) {
       ProjectedShiftSolve op(factor, m);
       Spectra::SymEigsShiftSolver<ProjectedShiftSolve> lanczos(op, 1, std::min(shift_invert_vectors, m), sigma);
