@@ -207,8 +207,9 @@ struct Keyframe {
                               ///< messages about it (its graph, spacing, data); empty: nowhere to name
   bool sharp = false;         ///< a sharp corner (§4.1): the splines duplicate this keyframe as they duplicate
                               ///< the endpoints, so every path (positions, eigenbases, coefficients,
-                              ///< orientation) may turn here instead of passing smoothly; no effect on the
-                              ///< first and last keyframes
+                              ///< orientation) may turn here instead of passing smoothly: velocities change
+                              ///< direction at once, and size too when the two chords differ (as asked: a
+                              ///< marching turn); no effect on the first and last keyframes
 };
 
 /// A group of the hierarchy (§4.4). The root holds everyone; each individual is in exactly one group.
