@@ -63,7 +63,10 @@
 //
 // Cost: eigen-decompositions O(n³) per keyframe, one symmetric eigenproblem O(n³) per rotation (the rotation's
 // planes are the eigenspaces of its symmetric part; clusters of nearly equal angles are resolved exactly by a
-// small Hermitian eigenproblem), and per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n).
+// small Hermitian eigenproblem; K−1 rotations in the cumulative form, up to 3 per interval in the paper's), and
+// per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n). With an automatic hierarchy (groups of at
+// most m = 250 items) time is O(N·m·(K·m + frames·d)) and memory O(N·(K·m + frames)) for N individuals: linear
+// in N. The baselines: O(N·K·frames) time.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
