@@ -66,7 +66,7 @@
 // small Hermitian eigenproblem; K−1 rotations in the cumulative form, up to 3 per interval in the paper's), and
 // per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n). With an automatic hierarchy (groups of at
 // most m = 250 items) time is O(N·m·(K·m + frames·d)) and memory O(N·(K·m + frames)) for N individuals: linear
-// in N. The baselines: O(N·K·frames) time.
+// in N. The baselines: O(N·(K·log N + frames)) time (graphs, then a few operations per individual and frame).
 #pragma once
 
 #include <throng/core/crowd_motion.h>
