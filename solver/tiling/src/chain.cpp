@@ -41,6 +41,7 @@ ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyfr
 
   const auto start2 = std::chrono::steady_clock::now();
   search(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 + 0.5 * f); });
+  meet_density(state, stitcher, preference, rng, report, {});
   report.phase2_seconds = seconds_since(start2);
 
   out.tiling = state.snapshot();

@@ -23,6 +23,11 @@ void anneal(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
 void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng, ChainReport& report,
             const Tick& tick);
 
+/// Density per area after phase 2 (density_control.cpp): correction rounds that drop whole groups of patches
+/// from over-full bins and sample under-full ones again; sets report.density_*.
+void meet_density(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng,
+                  ChainReport& report, const Tick& tick);
+
 /// Moves a transform by whole periods into the tile on the periodic axes; returns the periods subtracted.
 std::array<int, 3> canonicalise(const Problem& problem, Transform& transform);
 

@@ -128,7 +128,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
     std::set<std::uint32_t> seen{start};
     for (std::size_t k = 0; k < out.size(); ++k) {
       const LiveInstance& inst = state.at(out[k]);
-      if (inst.keyframed) return std::vector<std::uint32_t>{};
+      if (inst.pinned()) return std::vector<std::uint32_t>{};
       for (const auto& sides : inst.ends) {
         for (const EndLink& e : sides) {
           if (e.status == EndStatus::connected && seen.insert(e.partner.instance).second) out.push_back(e.partner.instance);
@@ -267,7 +267,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
       }
       if (placed || !still_dangling(d)) continue;
       if (!bridges_first && try_bridges()) continue;
-      if (holder.keyframed) continue;  // nothing was applied since `holder` was taken: still valid
+      if (holder.pinned()) continue;  // nothing was applied since `holder` was taken: still valid
       // Nothing fits d: remove its patch (Algorithm 2 line 15) and remember where it was attached.
       for (std::uint32_t f = 0; f < holder.ends.size(); ++f) {
         for (int side = 0; side < 2; ++side) {

@@ -37,8 +37,14 @@ class Stitcher {
   [[nodiscard]] Attempt stitch(const Proposal& proposal);
 
   /// IsValid: deformation within limits, headings matched at every connection of a deformed instance, no
-  /// interpenetration with other instances or obstacles.
+  /// interpenetration with other instances or obstacles, and (in a window) no sample before its freeze time.
   [[nodiscard]] bool valid(const Attempt& attempt);
+
+  /// What applying the attempt would change in the state's presence (presence.h): the instances it touches as
+  /// they are, subtracted, and as they would become, added.
+  void presence_delta(const Attempt& attempt, Presence::Delta& delta) const;
+  /// The presence of a rigid placement's character paths alone (no projection): phase 1's quick test.
+  void placement_presence(std::uint32_t type, const std::vector<Path>& paths, Presence::Delta& delta) const;
 
  private:
   bool deform(const Proposal& proposal, Attempt& attempt);

@@ -6,7 +6,7 @@
 //           is usable, a NumericalError says why, before any search); precomputes each type's deformation
 //           system; then runs `chains` independent chains (threads × MPI ranks), each:
 //             keyframes (their characters continued by the phase-2 search while the region is empty) →
-//             phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2),
+//             phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2) → density rounds,
 //           and keeps the best chain (options.h: Options::chains). Every rank returns the same tiling.
 //
 // Decisions where the paper is unclear (see also options.h, deformation.h):
@@ -31,6 +31,11 @@
 //   sampled points (Options::obstacle_step_m); deformation within the limits; times strictly increasing.
 // - Periodic axes: every distance, match and collision uses the nearest image; instance translations and time
 //   shifts are kept inside the tile.
+// - Density per area (options.h DensityOptions; the paper sets density by counts of patches or characters):
+//   phase 1 refuses a proposal that would raise the presence of an area in a time bin above its target,
+//   counting what the patch's open ends will become when phase 2 continues them (projected straight on to the
+//   region's side, presence.h); after phase 2, correction rounds drop whole groups of patches from over-full
+//   bins and sample under-full ones again (density_control.cpp). measure_density (density.h) reports it.
 #pragma once
 
 #include <throng/core/progress.h>
@@ -78,6 +83,11 @@ struct ChainReport {
   double phase1_seconds = 0;
   double phase2_seconds = 0;
   bool search_capped = false;       ///< phase 2 stopped at SearchOptions::max_steps
+  std::size_t density_rounds = 0;   ///< correction rounds run for the density per area (options.h)
+  std::size_t density_removed = 0;  ///< instances those rounds dropped from over-full bins
+  /// How far the controlled density bins lie outside their tolerance band, in all, relative to the sum of their
+  /// targets (0: every bin within its band; 0 without a density).
+  double density_distance = 0;
 };
 
 struct TilingReport {
