@@ -5,7 +5,9 @@
 // Density caps: a proposal is refused (a failure) when it would make the tiling hold more than
 // Options::characters characters, or raise the presence of some area in some time bin above its target
 // (presence.h: the patch's paths and the projections of its ends still open). The rigid placement's paths are
-// tested first, before the stitch, so a full bin costs little.
+// tested first, before the stitch, so a full bin costs little. In a window of a windowed run, a proposal is
+// refused when an entry it leaves dangling could not be continued back to a side of the region after the
+// window's freeze time (stitcher.h, entries_reachable).
 #include "phases.h"
 
 #include <algorithm>
@@ -43,6 +45,7 @@ void anneal(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
         stitcher.presence_delta(a, delta);
         too_many = !state.presence().fits(delta, 1.0);
       }
+      if (a.feasible && !too_many && !stitcher.entries_reachable(a)) too_many = true;
       if (a.feasible && !too_many) {
         const double nd = static_cast<double>(state.dangling()), nc = static_cast<double>(state.connected_ends());
         const double dE = state.energy(nd + static_cast<double>(a.delta_dangling), nc + static_cast<double>(a.delta_connected)) -

@@ -9,6 +9,19 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The counts and the mean preference cost of a chain's final state.
+void describe(const TilingState& state, const PreferenceModel& preference, ChainReport& report) {
+  report.dangling = state.dangling();
+  report.instances = state.instances();
+  report.characters = state.characters();
+  double cost = 0;
+  for (std::uint32_t id = 0; id < state.slots(); ++id) {
+    const LiveInstance& inst = state.at(id);
+    if (inst.alive) cost += preference.cost(inst.type, inst.transform);
+  }
+  report.mean_preference_cost = state.instances() == 0 ? 0.0 : cost / static_cast<double>(state.instances());
+}
+
 }  // namespace
 
 ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain, const Tick& tick) {
@@ -45,12 +58,33 @@ ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyfr
   report.phase2_seconds = seconds_since(start2);
 
   out.tiling = state.snapshot();
-  report.dangling = state.dangling();
-  report.instances = state.instances();
-  report.characters = state.characters();
-  double cost = 0;
-  for (const Instance& inst : out.tiling.instances) cost += preference.cost(static_cast<std::uint32_t>(inst.type), inst.transform);
-  report.mean_preference_cost = out.tiling.instances.empty() ? 0.0 : cost / static_cast<double>(out.tiling.instances.size());
+  describe(state, preference, report);
+  if (tick) tick(1.0);
+  return out;
+}
+
+WindowChain run_window_chain(const Problem& problem, std::vector<LiveInstance> carried, std::size_t chain,
+                             std::uint64_t seed, const Tick& tick) {
+  WindowChain out;
+  ChainReport& report = out.report;
+  report.chain = chain;
+  Rng rng(seed);
+  out.state = std::make_unique<TilingState>(problem);
+  TilingState& state = *out.state;
+  state.restore(std::move(carried));
+  Stitcher stitcher(state);
+  const PreferenceModel preference(problem);
+
+  const auto start = std::chrono::steady_clock::now();
+  anneal(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 * f); });
+  report.phase1_seconds = seconds_since(start);
+  report.phase1_instances = state.instances();
+  report.phase1_dangling = state.dangling();
+  const auto start2 = std::chrono::steady_clock::now();
+  search(state, stitcher, preference, rng, report, [&](double f) { if (tick) tick(0.5 + 0.5 * f); });
+  meet_density(state, stitcher, preference, rng, report, {});
+  report.phase2_seconds = seconds_since(start2);
+  describe(state, preference, report);
   if (tick) tick(1.0);
   return out;
 }

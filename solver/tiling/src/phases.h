@@ -8,7 +8,10 @@
 #include "state.h"
 #include "stitcher.h"
 
+#include <cstdint>
 #include <functional>
+#include <memory>
+#include <vector>
 
 namespace throng::tiling {
 
@@ -36,8 +39,18 @@ struct ChainResult {
   ChainReport report;
 };
 
-/// One chain: keyframes, phase 1, phase 2, from Rng(derive_seed(seed, chain)).
+/// One chain: keyframes, phase 1, phase 2, density rounds, from Rng(derive_seed(seed, chain)).
 [[nodiscard]] ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain,
                                     const Tick& tick);
+
+/// One chain of a window of a windowed run (windowed.h): from the carried instances, phase 1, phase 2, density
+/// rounds, drawing from Rng(seed). The state is returned as it ends; report.characters, .instances, .dangling
+/// and .mean_preference_cost describe it.
+struct WindowChain {
+  std::unique_ptr<TilingState> state;
+  ChainReport report;
+};
+[[nodiscard]] WindowChain run_window_chain(const Problem& problem, std::vector<LiveInstance> carried, std::size_t chain,
+                                           std::uint64_t seed, const Tick& tick);
 
 }  // namespace throng::tiling

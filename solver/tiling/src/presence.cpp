@@ -196,13 +196,7 @@ void Presence::projection(const Eigen::Vector2d& position, double heading, doubl
     }
   }
   const Eigen::Vector2d direction = (is_exit ? 1.0 : -1.0) * Eigen::Vector2d(std::cos(heading), std::sin(heading));
-  double reach = infinity;  // metres to a side that is not periodic
-  for (int axis = 0; axis < 2; ++axis) {
-    if (region_.periodic[static_cast<std::size_t>(axis)] || direction[axis] == 0) continue;
-    const double side = direction[axis] > 0 ? region_.max[axis] : region_.min[axis];
-    reach = std::min(reach, (side - position[axis]) / direction[axis]);
-  }
-  double duration = reach / speed_;
+  double duration = time_to_side(region_, position, direction, speed_);
   if (region_.periodic[2]) {
     duration = std::min(duration, span_.t1 - span_.t0);
   } else if (is_exit) {
@@ -214,6 +208,19 @@ void Presence::projection(const Eigen::Vector2d& position, double heading, doubl
   const Eigen::Vector2d far = position + direction * (duration * speed_);
   if (is_exit) segment(position, far, time, time + duration, sign, delta);
   else segment(far, position, time - duration, time, sign, delta);
+}
+
+double time_to_side(const Region& region, const Eigen::Vector2d& position, const Eigen::Vector2d& direction,
+                    double speed) {
+  double reach = infinity;  // metres to a side that is not periodic
+  for (int axis = 0; axis < 2; ++axis) {
+    if (region.periodic[static_cast<std::size_t>(axis)]) continue;
+    if (!(position[axis] > region.min[axis] && position[axis] < region.max[axis])) return 0.0;
+    if (direction[axis] == 0) continue;
+    const double side = direction[axis] > 0 ? region.max[axis] : region.min[axis];
+    reach = std::min(reach, (side - position[axis]) / direction[axis]);
+  }
+  return reach / speed;
 }
 
 void Presence::apply(const Delta& delta) {

@@ -97,6 +97,11 @@ class Presence {
   std::vector<double> target_;
 };
 
+/// Seconds a character at `position` walking at `speed` along `direction` (a unit vector) takes to leave
+/// `region` by a side that is not periodic; +∞ when it never does, 0 when it is outside already.
+[[nodiscard]] double time_to_side(const Region& region, const Eigen::Vector2d& position, const Eigen::Vector2d& direction,
+                                  double speed);
+
 /// The area of `box` not covered by any obstacle of `scene` at time `time` (on a periodic axis, by any image),
 /// counted on a raster of at most `cell_m` (coarser when the box would need more than 250,000 cells).
 [[nodiscard]] double free_area(const Scene& scene, const Eigen::Vector2d& min, const Eigen::Vector2d& max, double time,

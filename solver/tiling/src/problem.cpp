@@ -58,7 +58,7 @@ Problem::Problem(std::shared_ptr<const PatchPrecompute> shared, const PatchLibra
     const double first = window.horizon_t0 + std::floor((freeze - window.horizon_t0) / bin) * bin;
     presence_span = {first, window.horizon_t1, freeze, window.horizon_t1};
   } else {
-    presence_span = {region.t0, region.t1, region.t0, region.t1};
+    presence_span = {window.horizon_t0, window.horizon_t1, window.horizon_t0, window.horizon_t1};
   }
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
   for (const Obstacle& o : environment.scene.obstacles) {

@@ -14,7 +14,9 @@
 // pushed forward by the candidates above meets another only by chance. On such a tile, after
 // SearchOptions::stale_sweeps sweeps in a row that did not lower the count, the smallest group of patches
 // connected to a dangling end (through every connection of every character on the way; no keyframe among
-// them; at most half the tiling) is dropped whole: its dangling ends go and no partner is left dangling.
+// them; at most half the tiling) is dropped whole: its dangling ends go and no partner is left dangling. The same
+// holds in a window of a windowed run (problem.h), where an end just after the freeze time may have nothing that
+// fits before it: removals would only move it back and forth.
 #include "phases.h"
 
 #include <algorithm>
@@ -111,6 +113,9 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
   // Where no end can leave by a side (every axis periodic) bridges are the only way the count falls: try them
   // first; elsewhere they are the last resort before a removal.
   const bool bridges_first = problem.region.periodic[0] && problem.region.periodic[1] && problem.region.periodic[2];
+  // In a window of a windowed run an end may sit where nothing can continue it (a patch would reach back before
+  // the freeze time): removing patch after patch then only moves the end back and forth; its whole group goes.
+  const bool windowed = std::isfinite(problem.freeze);
 
   const auto still_dangling = [&](const DanglingEnd& d) {
     if (d.ref.instance >= state.slots()) return false;
@@ -289,7 +294,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
     } else {
       ++stale;
     }
-    if (bridges_first && stale >= o.stale_sweeps) {
+    if ((bridges_first || windowed) && stale >= o.stale_sweeps) {
       // The smallest component holding a dangling end (ties: the first in sweep order), if it is at most half
       // of the tiling: dropping more would trade the tiling for an empty one.
       std::vector<std::uint32_t> drop;

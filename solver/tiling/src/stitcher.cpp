@@ -250,6 +250,27 @@ bool Stitcher::deform(const Proposal& proposal, Attempt& attempt) {
   return true;
 }
 
+bool Stitcher::entries_reachable(const Attempt& attempt) const {
+  if (!std::isfinite(problem_.freeze)) return true;
+  const Change& change = attempt.change;
+  const PatchType& type = problem_.library.types[change.type];
+  for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
+    if (!type.fragments[f].is_character()) continue;
+    const bool linked = std::any_of(change.links.begin(), change.links.end(),
+                                    [&](const NewLink& l) { return l.new_fragment == f && !l.new_is_exit; });
+    if (linked) continue;
+    const EndPoint e = problem_.end_point(change.type, change.paths, f, false);
+    if (state_.classify(e, false) != EndStatus::dangling) continue;
+    const Eigen::Vector2d back = -Eigen::Vector2d(std::cos(e.heading), std::sin(e.heading));
+    // The last patch in (at most the longest) must start after the freeze time too.
+    const double in = time_to_side(problem_.region, e.position, back, problem_.options.density.projection_speed_mps);
+    if (in + 2 * problem_.max_half_duration_s > e.time - problem_.freeze) {
+      return false;
+    }
+  }
+  return true;
+}
+
 void Stitcher::placement_presence(std::uint32_t type, const std::vector<Path>& paths, Presence::Delta& delta) const {
   const PatchType& t = problem_.library.types[type];
   for (std::size_t f = 0; f < t.fragments.size(); ++f) {

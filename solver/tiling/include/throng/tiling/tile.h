@@ -1,5 +1,5 @@
 // The tiler: fills a space-time region with deformable motion patches so that no entry or exit is left
-// dangling (seed 004 §5, METHODS.md §4).
+// dangling (seed 004 §5, METHODS.md §4). A long horizon is tiled window by window by windowed.h.
 //
 //   tile()  validates the library, keyframes and options; finds the patch types that can ever be used inside
 //           the region (pose classes that no end of the opposite kind ever has make a type unusable: when none
