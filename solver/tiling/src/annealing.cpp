@@ -3,7 +3,8 @@
 // proposals since the last acceptance and the phase ends at i_max.
 //
 // Density caps: a proposal is refused (a failure) when it would make the tiling hold more than
-// Options::characters characters, or raise the presence of some area in some time bin above its target
+// Options::characters characters (on a tile periodic on every axis with a density per area: its target count),
+// or raise the presence of some area in some time bin above its target
 // (presence.h: the patch's paths and the projections of its ends still open). The rigid placement's paths are
 // tested first, before the stitch, so a full bin costs little. In a window of a windowed run, a proposal is
 // refused when an entry it leaves dangling could not be continued back to a side of the region after the
@@ -14,11 +15,29 @@
 #include <cmath>
 
 namespace throng::tiling {
+namespace {
+
+// Options::characters; on a tile periodic on every axis with a density per area and no such cap, the region's
+// mean target count: there every character is a loop present at every time, so starting more chains than
+// characters only leaves ends that phase 2 must pair up.
+std::size_t chain_cap(const TilingState& state) {
+  const Problem& problem = state.problem();
+  const Presence& presence = state.presence();
+  const Region& r = problem.region;
+  if (problem.options.characters > 0 || !presence.enabled() || !(r.periodic[0] && r.periodic[1] && r.periodic[2])) {
+    return problem.options.characters;
+  }
+  double sum = 0;
+  for (std::size_t b = 0; b < presence.bins(); ++b) sum += presence.target(0, b);
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(sum / static_cast<double>(presence.bins()))));
+}
+
+}  // namespace
 
 void anneal(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng, ChainReport& report,
             const Tick& tick) {
   const AnnealingOptions& o = state.problem().options.annealing;
-  const std::size_t target = state.problem().options.characters;
+  const std::size_t target = chain_cap(state);
   double temperature = o.t_max;
   std::size_t failures = 0;
   const bool capped = state.presence().enabled();

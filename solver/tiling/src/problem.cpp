@@ -44,21 +44,21 @@ Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options&
                          env.scene.region->t0, env.scene.region->t1}) {}
 
 Problem::Problem(std::shared_ptr<const PatchPrecompute> shared, const PatchLibrary& lib, const Environment& env,
-                 const Options& opts, const TimeWindow& window)
+                 const Options& opts, const TimeWindow& span)
     : precompute(std::move(shared)), library(lib), environment(env), options(opts), region(*env.scene.region),
       index_region(region), systems(precompute->systems), usable(precompute->usable),
       usable_types(precompute->usable_types), clear_pairs(precompute->clear_pairs),
       max_extent_m(precompute->max_extent_m), max_half_duration_s(precompute->max_half_duration_s),
-      sample_t0(window.sample_t0), sample_t1(window.sample_t1), freeze(window.freeze) {
+      sample_t0(span.sample_t0), sample_t1(span.sample_t1), freeze(span.freeze), window(span) {
   const Eigen::Vector3d p = tiling::periods(region);
   periods.p = {p.x(), p.y(), p.z()};
   if (std::isfinite(freeze)) index_region.t0 = freeze;
   if (std::isfinite(freeze)) {
     const double bin = options.density.bin_s;
-    const double first = window.horizon_t0 + std::floor((freeze - window.horizon_t0) / bin) * bin;
-    presence_span = {first, window.horizon_t1, freeze, window.horizon_t1};
+    const double first = span.horizon_t0 + std::floor((freeze - span.horizon_t0) / bin) * bin;
+    presence_span = {first, span.horizon_t1, freeze, span.horizon_t1};
   } else {
-    presence_span = {window.horizon_t0, window.horizon_t1, window.horizon_t0, window.horizon_t1};
+    presence_span = {span.horizon_t0, span.horizon_t1, span.horizon_t0, span.horizon_t1};
   }
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
   for (const Obstacle& o : environment.scene.obstacles) {

@@ -77,6 +77,7 @@ struct Problem {
   double sample_t1 = 0;                 ///< density is controlled in the bins they overlap
   double freeze = -std::numeric_limits<double>::infinity();  ///< see TimeWindow
   PresenceSpan presence_span;           ///< what the density bins cover (presence.h)
+  TimeWindow window;                    ///< as given (the whole region's span when not windowed)
   std::vector<Eigen::AlignedBox2d> obstacle_bounds;  ///< per obstacle, over the grids' time span and margins
 
   /// The end of fragment `f` of `paths` (first or last sample) with its pose class.

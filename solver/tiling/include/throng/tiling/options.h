@@ -84,6 +84,11 @@ struct SearchOptions {
   /// dropped (search.cpp).
   std::size_t stale_sweeps = 3;
   std::size_t max_steps = 400000;     ///< cap on candidate placements tried in all; reaching it ends the search
+  /// On a tile periodic on every axis: a chain whose phase 2 has not closed every loop within restart_steps
+  /// placements starts again from an empty tile with the next seed of its stream, at most `restarts` times; the
+  /// attempt with the fewest dangling ends is kept (chain.cpp). 0 restarts: one attempt of max_steps.
+  std::size_t restart_steps = 20000;
+  std::size_t restarts = 8;
 };
 
 /// The preference function F = Π exp(−f_i / σ_i) (Eq. 7) over an instance's position (its centroid), direction
