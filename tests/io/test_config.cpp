@@ -131,3 +131,15 @@ TEST_CASE("lists and missing keys report their place") {
   CHECK_THROWS_AS_WITH(points[1].as_doubles({2}), ConfigError, Contains("(points[1]): expected 2 numbers, found 3"));
   CHECK_THROWS_AS_WITH(job.at("strokes"), ConfigError, Contains("missing key 'strokes'"));
 }
+
+TEST_CASE("a key written twice in one mapping is an error naming both lines, at any depth") {
+  // yaml-cpp would keep the first value and drop the second without a word.
+  CHECK_THROWS_AS_WITH(read("agents: 7\ntime_step: 0.05\nagents: 9\n"), ConfigError,
+                       Contains("job.yaml:3:1: the key 'agents' is written twice") && Contains("first at line 1, again at line 3"));
+  CHECK_THROWS_AS_WITH(read("inner:\n  radius: 1\n  radius: 2\n"), ConfigError,
+                       Contains("'radius' is written twice") && Contains("first at line 2, again at line 3"));
+  CHECK_THROWS_AS_WITH(ConfigNode::parse("steps:\n  - {step: sketch, step: edit}\n", "p.yaml"), ConfigError,
+                       Contains("p.yaml:2:") && Contains("'step' is written twice"));
+  // The same key in two different mappings is fine.
+  CHECK(read("inner: {radius: 1}\nagents: 3\n").agents == 3);
+}

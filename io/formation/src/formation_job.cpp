@@ -280,6 +280,7 @@ void read_job(const ConfigNode& job, FormationJob& parsed) {
       if (!std::isfinite(keyframe.time_s)) time.fail("time must be a finite number of seconds");
       keyframe.positions = read_positions(key);
       if (auto e = key.find("edits")) keyframe.edits = read_edits(*e, parsed.problem.hierarchy);
+      if (auto sharp = key.find("sharp")) keyframe.sharp = sharp->as_bool();  // a sharp corner (formation.h)
       if (k > 0) {
         const formation::Keyframe& first = parsed.problem.keyframes.front();
         const formation::Keyframe& previous = parsed.problem.keyframes.back();

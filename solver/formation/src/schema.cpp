@@ -5,6 +5,11 @@ namespace throng::formation {
 void describe(OptionBinder& b, Options& o) {
   b.field({.key = "frame_rate", .unit = "Hz", .range = Range::positive(), .help = "output frames per second"}, o.frame_rate_hz);
   b.field({.key = "tension", .range = Range::closed(0, 1), .help = "Catmull-Rom τ of Eq. 5"}, o.tension);
+  b.choice({.key = "interpolation", .help = "the paper's method, or a baseline of its figures (linear, polar)"},
+           o.interpolation,
+           {{"spectral", Interpolation::spectral}, {"linear", Interpolation::linear}, {"polar", Interpolation::polar}});
+  b.choice({.key = "keyframe_product", .help = "Eq. 5's eigenbasis path: consecutive rotations, or as printed"},
+           o.keyframe_product, {{"cumulative", KeyframeProduct::cumulative}, {"paper", KeyframeProduct::paper}});
   b.choice({.key = "reordering", .help = "none, greedy, or greedy then the max-min refinement (§4.2)"}, o.reordering,
            {{"none", Reordering::none}, {"greedy", Reordering::greedy}, {"max_min", Reordering::max_min}});
   b.choice({.key = "orientation", .help = "the PCA adjustment of §3.3"}, o.orientation,
@@ -14,6 +19,9 @@ void describe(OptionBinder& b, Options& o) {
            .help = "below it (principal variances nearly equal) PCA uses procrustes"},
           o.isotropy_tolerance);
   b.field({.key = "match_individuals", .help = "keyframes' rows are not in correspondence: match them"}, o.match_individuals);
+  b.field({.key = "auto_cluster_size", .range = Range::closed(2, 1e9),
+           .help = "the largest group of a hierarchy built automatically"},
+          o.auto_cluster_size);
   b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .help = "every individual's radius in the output"},
           o.radius_m);
   b.section("collision", [&](OptionBinder& c) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace throng::tiling {
 namespace {
@@ -17,6 +18,7 @@ void require(bool ok, const char* name, double value, const char* expected) {
 }
 
 void positive(const char* name, double v) { require(v > 0 && std::isfinite(v), name, v, "a finite value > 0"); }
+void non_negative(const char* name, double v) { require(v >= 0 && std::isfinite(v), name, v, "a finite value ≥ 0"); }
 
 }  // namespace
 
@@ -35,6 +37,22 @@ void validate(const Options& o) {
   positive("preference.label_sigma", o.preference.label_sigma);
   for (const auto& [label, cost] : o.preference.label_costs) {
     require(std::isfinite(cost) && cost >= 0, ("preference.labels." + label).c_str(), cost, "a finite value ≥ 0");
+  }
+  // Density per area is not a job key (library users set it): its ranges are checked here.
+  const DensityOptions& d = o.density;
+  non_negative("density.per_m2", d.per_m2);
+  positive("density.area_cell", d.area_cell_m);
+  require(d.tolerance > 0 && d.tolerance < 1, "density.tolerance", d.tolerance, "a fraction in (0, 1)");
+  positive("density.bin", d.bin_s);
+  positive("density.report_window", d.report_window_s);
+  require(d.report_window_s >= d.bin_s, "density.report_window", d.report_window_s, "≥ density.bin");
+  positive("density.projection_speed", d.projection_speed_mps);
+  for (std::size_t z = 0; z < d.zones.size(); ++z) {
+    const DensityZone& zone = d.zones[z];
+    const std::string name = "density.zones[" + std::to_string(z) + "]";
+    require(zone.min.allFinite() && zone.max.allFinite() && zone.max.x() > zone.min.x() && zone.max.y() > zone.min.y(),
+            (name + ".max − min").c_str(), (zone.max - zone.min).minCoeff(), "a box with max > min on x and y");
+    require(zone.per_m2 > 0 && std::isfinite(zone.per_m2), (name + ".per_m2").c_str(), zone.per_m2, "a finite value > 0");
   }
 }
 

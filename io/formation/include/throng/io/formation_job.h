@@ -10,6 +10,7 @@
 //     - time: 10
 //       shapes: [{circle: {count: 25, radius: 6}}]   # ... or generated (see throng/io/formation_shapes.h)
 //       edits: {...}                  # this keyframe's graph only, after the job-wide edits (same keys as below)
+//       sharp: false                  # true: a sharp corner (duplicated in Eq. 5's control points, §4.1)
 //   from_crowd:                       # instead of keyframes: the formations of an existing crowd
 //     file: crowd.h5                  # in a `throng run` step: leave out to use the step's input crowd
 //     frames: [0, 120, 240]           # frame indices (−1 = last)
@@ -36,6 +37,9 @@
 //   # or   hierarchy: flat                          one flat group however many individuals
 //   frame_rate: 30                    # output frames per second; every keyframe time is a frame
 //   tension: 0.5                      # Catmull-Rom τ of Eq. 5, in [0, 1]
+//   interpolation: spectral           # spectral | linear | polar (the paper's baselines)
+//   keyframe_product: cumulative      # cumulative | paper (Eq. 5 as printed)
+//   auto_cluster_size: 250            # the largest group of an automatic hierarchy (≥ 2)
 //   reordering: greedy                # none | greedy | max_min (greedy, then the max-min refinement, §4.2)
 //   orientation: pca                  # none | pca | procrustes (PCA adjustment, §3.3)
 //   isotropy_tolerance: 0.05          # below it (principal variances nearly equal) PCA uses procrustes
