@@ -88,7 +88,7 @@ TEST_CASE("the action table lists the standard actions, then each patch with its
   CHECK(a.of_fragment[lib.find("handshake")][0] == a.of_fragment[lib.find("handshake")][1]);
 }
 
-TEST_CASE("a laid turn in place turns the agent by the patch's angle; a standing agent's facing does not change") {
+TEST_CASE("a laid turn in place turns the agent by the patch's angle, and a standing agent's facing does not change") {
   // wait (0–2 s) → turn_in_place (2–4 s) → wait (4–6 s) at one spot, placed at angle φ; the second wait faces
   // where the turn ended. Patch boundaries fall on frames (10 Hz).
   const PatchLibrary lib = builtin_library({"wait", "turn_in_place"});
