@@ -140,10 +140,21 @@ ColumnMap map_columns(const std::vector<std::string>& header, std::size_t width,
   return map;
 }
 
+// The unit a header cell states after its name: "x [mm]", "x (cm)", "x/m"; empty when none.
+std::string unit_in(std::string_view cell) {
+  const std::string name = lower(trimmed(cell));
+  const std::size_t cut = name.find_first_of("[(/");
+  if (cut == std::string::npos) return {};
+  std::string unit;
+  for (char c : name.substr(cut + 1)) {
+    if (c != ' ' && c != ']' && c != ')') unit += c;
+  }
+  return unit == "m" || unit == "cm" || unit == "mm" ? unit : std::string{};
+}
+
 }  // namespace
 
 ImportedCrowd read_table(const std::string& source, std::string_view text, const ImportOptions& options, MemoryBudget& budget) {
-  const double scale = metres_per_unit(options.units, 1.0);
   // The first line that is not blank or a `#` comment: a header row, or the first row of a header-less table.
   std::string_view first;
   std::size_t first_number = 0;
@@ -163,6 +174,15 @@ ImportedCrowd read_table(const std::string& source, std::string_view text, const
   }
   const std::size_t width = first_cells.size();
   ColumnMap map = map_columns(header, width, options, source);
+  // Units: --units, or what the header states after the x column's name (the same for every position column).
+  std::string stated_unit = has_header ? unit_in(first_cells[map[x]]) : std::string{};
+  for (Role r : {y, z}) {
+    if (has_header && map[r] != none && unit_in(first_cells[map[r]]) != stated_unit) stated_unit.clear();
+  }
+  if (!stated_unit.empty() && !options.units.empty() && stated_unit != options.units) {
+    throw ConfigError(source + ": its header gives positions in " + stated_unit + "; --units " + options.units + " contradicts it (leave --units out)");
+  }
+  const double scale = metres_per_unit(options.units.empty() ? stated_unit : options.units, 1.0);
   if (options.species_from == "none") map[species] = none;
   else if (!options.species_from.empty() && !species_from_file(options.species_from)) {
     const auto it = std::find(header.begin(), header.end(), lower(options.species_from));
