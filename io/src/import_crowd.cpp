@@ -36,6 +36,12 @@ std::string head_of(const std::filesystem::path& path, std::size_t count) {
   return out;
 }
 
+// Text after a UTF-8 byte order mark (spreadsheets write one before a CSV's header).
+std::string_view without_byte_order_mark(std::string_view text) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  return text;
+}
+
 [[noreturn]] void unknown(const std::filesystem::path& path, const std::string& found) {
   throw InputError(path.string() + ": cannot tell its format (" + found + "). " + known_formats);
 }
@@ -157,7 +163,7 @@ ImportFormat detect_import_format(const std::filesystem::path& path, const ReadL
   // Text: the last line of the sniffed part may be cut; only whole lines decide.
   std::string_view text(head);
   if (size > head.size()) text = text.substr(0, text.rfind('\n') == std::string_view::npos ? 0 : text.rfind('\n'));
-  return detect_text(path, text, size <= head.size());
+  return detect_text(path, without_byte_order_mark(text), size <= head.size());
 }
 
 ImportedCrowd import_crowd(const std::filesystem::path& path, const ImportOptions& options, const ReadLimits& limits) {
@@ -196,9 +202,10 @@ ImportedCrowd import_crowd(const std::filesystem::path& path, const ImportOption
     case ImportFormat::csv: {
       MemoryBudget budget(limits);
       const std::string text = read_text_file(path, budget, "a trajectory text file");
-      out = format == ImportFormat::csv ? detail::read_table(source, text, options, budget)
-            : format == ImportFormat::petrack ? detail::read_petrack(source, text, options, budget)
-                                             : detail::read_frame_id_x_y(source, text, options, budget);
+      const std::string_view body = without_byte_order_mark(text);
+      out = format == ImportFormat::csv ? detail::read_table(source, body, options, budget)
+            : format == ImportFormat::petrack ? detail::read_petrack(source, body, options, budget)
+                                             : detail::read_frame_id_x_y(source, body, options, budget);
       out.crowd.provenance.inputs.push_back(source);
       break;
     }

@@ -77,6 +77,9 @@ TEST_CASE("CSV columns by --columns (names or indices), times in seconds, radius
   CHECK(plain.times == std::vector<double>{0.0, 0.4});
   CHECK(plain.position(1, 1).y() == 4.0);
   CHECK_FALSE(plain.present(0, 1));
+  // As a spreadsheet saves it: a UTF-8 byte order mark before the header, CRLF line ends.
+  std::ofstream(dir / "excel.csv") << "\xEF\xBB\xBFTime,ID,X,Y\r\n0,1,0.5,0.25\r\n0.4,1,1,0.5\r\n";
+  CHECK(import_crowd(dir / "excel.csv").crowd.motion.position(1, 0).x() == 1.0);
 
   std::ofstream(dir / "odd.csv") << "when;who;east;north;size;kind\n0.0;5;100;200;30;2\n0.5;5;150;200;30;2\n";
   ImportOptions o;

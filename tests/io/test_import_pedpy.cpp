@@ -96,7 +96,7 @@ TEST_CASE("round trip through io/export's PedPy writer: the same people at the s
   }
 }
 
-TEST_CASE("crowd files import as they are; HDF5 files of other layouts are refused naming what is missing") {
+TEST_CASE("crowd files import as they are, and HDF5 files of other layouts are refused naming what is missing") {
   const auto dir = test::scratch_dir("import_hdf5_other");
   const CrowdFile crowd = zara01_sample();
   write_crowd_file(dir / "crowd.h5", crowd);
