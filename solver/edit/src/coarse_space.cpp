@@ -11,12 +11,11 @@ namespace {
 
 using linalg::Complex;
 
-// Agent groups: METIS over the agents joined by a formation edge at any sample.
-std::vector<int> agent_groups(const MotionGraph& graph, int agents_per_group, std::uint64_t seed, int& count) {
+// Agent groups: METIS over the agents joined by a formation edge at any sample; at most `max_groups`.
+std::vector<int> agent_groups(const MotionGraph& graph, int agents_per_group, std::size_t max_groups, std::uint64_t seed, int& count) {
   const std::size_t n = graph.agent_count();
-  const int parts = static_cast<int>(std::clamp<std::size_t>((n + static_cast<std::size_t>(agents_per_group) / 2) /
-                                                                 static_cast<std::size_t>(agents_per_group),
-                                                             1, n));
+  const std::size_t wanted = (n + static_cast<std::size_t>(agents_per_group) / 2) / static_cast<std::size_t>(agents_per_group);
+  const int parts = static_cast<int>(std::clamp<std::size_t>(std::min(wanted, max_groups), 1, n));
   if (parts <= 1) {
     count = 1;
     return std::vector<int>(n, 0);
@@ -32,7 +31,7 @@ std::vector<int> agent_groups(const MotionGraph& graph, int agents_per_group, st
 }  // namespace
 
 SpaceTimeCoarsening make_coarsening(const MotionGraph& graph, const VertexSplit& split, int agents_per_group,
-                                    int samples_per_node, std::uint64_t seed) {
+                                    int samples_per_node, std::size_t max_functions, std::uint64_t seed) {
   const Clip& clip = graph.clip;
   const auto n = static_cast<int>(graph.agent_count());
   const auto samples = static_cast<int>(graph.sample_count());
@@ -50,8 +49,16 @@ SpaceTimeCoarsening make_coarsening(const MotionGraph& graph, const VertexSplit&
   for (std::size_t i = 0; i < split.free.size(); ++i) {
     out.chains[static_cast<std::size_t>(chain_of[static_cast<std::size_t>(split.free[i] % n)])].push_back(static_cast<int>(i));
   }
+  // Time nodes: samples 0, τ, 2τ, ... and the last sample.
+  std::vector<int> nodes;
+  for (int s = 0; s < samples - 1; s += samples_per_node) nodes.push_back(s);
+  nodes.push_back(std::max(0, samples - 1));
+  if (nodes.size() >= 2 && nodes[nodes.size() - 2] == nodes.back()) nodes.pop_back();
+  out.time_nodes = static_cast<int>(nodes.size());
+  constexpr int modes = 4;
   // Groups, and their centre and radius at every sample (over all their agents, pinned or not).
-  const std::vector<int> group = agent_groups(graph, agents_per_group, seed, out.groups);
+  const std::size_t max_groups = std::max<std::size_t>(1, max_functions / (modes * nodes.size()));
+  const std::vector<int> group = agent_groups(graph, agents_per_group, max_groups, seed, out.groups);
   const auto G = static_cast<std::size_t>(out.groups);
   std::vector<Complex> centre(G * static_cast<std::size_t>(samples), Complex(0));
   std::vector<double> radius(G * static_cast<std::size_t>(samples), 0.0);
@@ -72,13 +79,6 @@ SpaceTimeCoarsening make_coarsening(const MotionGraph& graph, const VertexSplit&
       radius[k] = std::max(radius[k], std::abs(z(clip.vertex(static_cast<std::size_t>(s), static_cast<std::size_t>(j))) - centre[k]));
     }
   }
-  // Time nodes: samples 0, τ, 2τ, ... and the last sample.
-  std::vector<int> nodes;
-  for (int s = 0; s < samples - 1; s += samples_per_node) nodes.push_back(s);
-  nodes.push_back(std::max(0, samples - 1));
-  if (nodes.size() >= 2 && nodes[nodes.size() - 2] == nodes.back()) nodes.pop_back();
-  out.time_nodes = static_cast<int>(nodes.size());
-  constexpr int modes = 4;
   std::vector<Eigen::Triplet<Complex>> entries;
   entries.reserve(split.free.size() * 2 * modes);
   for (std::size_t i = 0; i < split.free.size(); ++i) {

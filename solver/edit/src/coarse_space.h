@@ -33,8 +33,10 @@ struct SpaceTimeCoarsening {
 };
 
 /// The chains and coarse basis for the free vertices of `split` (see above). agents_per_group, samples_per_node
-/// ≥ 1; seed: METIS's (same seed, same groups).
+/// ≥ 1; groups are made larger than agents_per_group when the basis would otherwise exceed `max_functions`
+/// (the coarse problem is factorised directly: its cost grows with the cube of its separators); seed: METIS's
+/// (same seed, same groups).
 [[nodiscard]] SpaceTimeCoarsening make_coarsening(const MotionGraph& graph, const VertexSplit& split, int agents_per_group,
-                                                  int samples_per_node, std::uint64_t seed);
+                                                  int samples_per_node, std::size_t max_functions, std::uint64_t seed);
 
 }  // namespace throng::edit

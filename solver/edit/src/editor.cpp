@@ -77,6 +77,7 @@ void validate(const Options& o) {
   }
   if (solver.coarse_agents < 1) throw ConfigError("solver.coarse_agents " + std::to_string(solver.coarse_agents) + ": expected ≥ 1");
   if (solver.coarse_samples < 1) throw ConfigError("solver.coarse_samples " + std::to_string(solver.coarse_samples) + ": expected ≥ 1");
+  if (solver.coarse_functions < 4) throw ConfigError("solver.coarse_functions " + std::to_string(solver.coarse_functions) + ": expected ≥ 4");
   if (solver.max_iterations < 1) throw ConfigError("solver.max_iterations " + std::to_string(solver.max_iterations) + ": expected ≥ 1");
   if (!(solver.schur_cache_megabytes >= 0) || !std::isfinite(solver.schur_cache_megabytes)) {
     throw ConfigError("solver.schur_cache_megabytes " + std::to_string(solver.schur_cache_megabytes) + ": expected a finite size ≥ 0");

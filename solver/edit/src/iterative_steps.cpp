@@ -208,7 +208,7 @@ void IterativeSteps::precompute(const ResolvedRequest& current) {
     }
     assemble_seconds_ = seconds_since(assemble_start);
     const auto preconditioner_start = Clock::now();
-    coarsening_ = make_coarsening(graph_, split_, o.coarse_agents, o.coarse_samples, options_.local.seed);
+    coarsening_ = make_coarsening(graph_, split_, o.coarse_agents, o.coarse_samples, o.coarse_functions, options_.local.seed);
     linalg::TwoLevelOptions two_level;
     two_level.blas_threads = o.blas_threads;
     for (Step* step : steps) {
@@ -312,7 +312,7 @@ void IterativeSteps::solve_step(Step& step, const ResolvedRequest& current, cons
         step.rhs = *rhs;
         const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations);
         step.iterations = cg.iterations;
-        step.last_step = cg.last_step[0];
+        step.last_step = cg.error_estimate[0];
         z += step.warm.col(0);
       }
     } else {
@@ -327,7 +327,7 @@ void IterativeSteps::solve_step(Step& step, const ResolvedRequest& current, cons
       if (rhs != nullptr) step.rhs.col(0) += *rhs;
       const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations);
       step.iterations = cg.iterations;
-      step.last_step = cg.last_step[0];
+      step.last_step = cg.error_estimate[0];
       z += step.warm.col(0);
     }
   }
@@ -398,14 +398,14 @@ void IterativeSteps::solve(const ResolvedRequest& current, Positions& x1, Positi
   solve_step(*step1_, current, du, nullptr, x1, report);
   report.step1_seconds = seconds_since(start);
   report.iterations = step1_->iterations;
-  report.solver_step_m = step1_->last_step;
+  report.solver_error_m = step1_->last_step;
   if (step2_) {
     const auto fit_start = Clock::now();
     esc_rhs(features_, graph_.clip.positions, x1, split_, esc_rhs_);
     report.fit_seconds = seconds_since(fit_start);
     solve_step(*step2_, current, du, &esc_rhs_, x2, report);
     report.iterations += step2_->iterations;
-    report.solver_step_m = std::max(report.solver_step_m, step2_->last_step);
+    report.solver_error_m = std::max(report.solver_error_m, step2_->last_step);
   } else {
     x2 = x1;
   }

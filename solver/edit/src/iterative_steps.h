@@ -20,9 +20,10 @@
 // conjugate-gradient solve per drag for the change from x⁰, started from the previous drag's.
 //
 // Accuracy: the handles are met exactly and the constraints to rounding; every other position is within about
-// SolverOptions::position_tolerance of the exact solution (conjugate gradients stop when their last step moved
-// no vertex by more than that; the handle bases and constraint columns are solved to a millionth of their size).
-// The Report says what the last step was; SolverOptions::compare_direct measures the difference itself.
+// SolverOptions::position_tolerance of the exact solution (conjugate gradients stop when the error they estimate
+// is left is below that, linalg/conjugate_gradients.h; the handle bases and constraint columns are solved to
+// 10⁻⁷ of their size). The Report gives that estimate (solver_error_m); SolverOptions::compare_direct measures
+// the difference itself (direct_difference_m).
 #pragma once
 
 #include "coarse_space.h"

@@ -4,6 +4,7 @@
 #include <throng/linalg/spd_solver.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +13,12 @@ namespace throng::linalg {
 namespace {
 
 constexpr std::size_t row_block = 4096;  // rows per task of the vector updates
+// The contraction factor ρ the stopping rule assumes (conjugate_gradients.h), within these bounds.
+constexpr double min_contraction = 0.5;
+constexpr double max_contraction = 0.95;
+// ρ is the largest ratio over this many last steps: the largest move of CG's steps does not fall steadily (it
+// may drop 4× in one step and rise again the next), so one ratio can promise far more than the method delivers.
+constexpr std::size_t contraction_window = 3;
 
 }  // namespace
 
@@ -36,6 +43,7 @@ CgReport conjugate_gradients(const ComplexSparse& A, Preconditioner& M, const Co
   CgReport report;
   report.column_iterations.assign(static_cast<std::size_t>(k), 0);
   report.last_step.assign(static_cast<std::size_t>(k), 0.0);
+  report.error_estimate.assign(static_cast<std::size_t>(k), 0.0);
   if (n == 0 || k == 0) return report;
 
   ComplexBlock& R = workspace.R;
@@ -45,6 +53,9 @@ CgReport conjugate_gradients(const ComplexSparse& A, Preconditioner& M, const Co
   if (!workspace.residual_given || R.rows() != n || R.cols() != k) residual(A, X, B, R);
   workspace.residual_given = false;
   std::vector<char> active(static_cast<std::size_t>(k), 1);
+  std::vector<std::array<double, contraction_window>> recent_ratios(static_cast<std::size_t>(k));
+  for (auto& r : recent_ratios) r.fill(0.0);
+  const double prior = workspace.contraction;
   M.apply(R, Z);
   P = Z;
   std::vector<Complex> rz = column_dots(R, Z);
@@ -60,7 +71,7 @@ CgReport conjugate_gradients(const ComplexSparse& A, Preconditioner& M, const Co
       for (Eigen::Index c = 0; c < k; ++c) {
         if (!active[static_cast<std::size_t>(c)]) continue;
         what << "conjugate gradients did not converge in " << max_iterations << " iterations (column " << c
-             << ": last step " << report.last_step[static_cast<std::size_t>(c)] << ", tolerance " << tol(c)
+             << ": estimated error " << report.error_estimate[static_cast<std::size_t>(c)] << ", tolerance " << tol(c)
              << "); raise solver.max_iterations or solver.tolerance_m, or use solver.method: direct";
         break;
       }
@@ -106,10 +117,19 @@ CgReport conjugate_gradients(const ComplexSparse& A, Preconditioner& M, const Co
     for (Eigen::Index c = 0; c < k; ++c) {
       const auto cu = static_cast<std::size_t>(c);
       if (!active[cu]) continue;
+      const double previous = report.last_step[cu];
       report.last_step[cu] = std::sqrt(step[cu]);
+      // The last contraction_window ratios, newest first; ρ is the largest.
+      auto& ratios = recent_ratios[cu];
+      std::rotate(ratios.rbegin(), ratios.rbegin() + 1, ratios.rend());
+      ratios[0] = previous > 0 ? report.last_step[cu] / previous : 0.0;
+      // The first step has no ratio of its own: the previous solve's contraction stands in for it.
+      const double measured = iteration == 1 ? prior : *std::max_element(ratios.begin(), ratios.end());
+      const double rho = std::clamp(measured, min_contraction, max_contraction);
+      report.error_estimate[cu] = report.last_step[cu] * rho / (1.0 - rho);
       report.column_iterations[cu] = iteration;
       report.iterations = std::max(report.iterations, iteration);
-      if (report.last_step[cu] <= tol(c)) active[cu] = 0;
+      if (report.error_estimate[cu] <= tol(c)) active[cu] = 0;
     }
     bool more = false;
     for (char a : active) more = more || a;
@@ -136,6 +156,14 @@ CgReport conjugate_gradients(const ComplexSparse& A, Preconditioner& M, const Co
       }
     });
   }
+  // This solve's contraction, for the next one's first step: the ρ its columns stopped with (the largest of
+  // their last ratios; kept from before when no column took two steps).
+  double contraction = 0;
+  for (std::size_t c = 0; c < static_cast<std::size_t>(k); ++c) {
+    if (report.column_iterations[c] < 2) continue;
+    contraction = std::max(contraction, *std::max_element(recent_ratios[c].begin(), recent_ratios[c].end()));
+  }
+  if (contraction > 0) workspace.contraction = contraction;
   return report;
 }
 

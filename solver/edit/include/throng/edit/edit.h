@@ -180,9 +180,10 @@ struct Report {
   std::string method;                  ///< "direct" or "iterative" ("auto" resolved)
   int iterations = 0;                  ///< iterative: conjugate-gradient iterations of the last deform(), both steps
   int precompute_iterations = 0;       ///< iterative: the most any precompute solve took (handle bases, constraint columns)
-  /// iterative: the largest move of a vertex in the last conjugate-gradient step of the last deform() (metres):
-  /// the estimate of the error left, at most SolverOptions::position_tolerance (0: no iteration was needed)
-  double solver_step_m = 0;
+  /// iterative: the estimated error left by the last deform()'s conjugate gradients (metres; linalg's
+  /// conjugate_gradients.h: the last step times ρ/(1 − ρ)), at most SolverOptions::position_tolerance (0: no
+  /// iteration was needed)
+  double solver_error_m = 0;
   std::size_t coarse_size = 0;         ///< iterative: functions in the preconditioner's coarse space
   /// With SolverOptions::compare_direct, the last deform() against the direct solve of the same request:
   /// the largest distance between a sample's position and the direct one (metres; −1: not compared) and the
