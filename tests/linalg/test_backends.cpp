@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include <test_paths.h>
 #include <throng/core/errors.h>
 #include <throng/linalg/spd_solver.h>
 
