@@ -4,6 +4,7 @@ find_package(PkgConfig REQUIRED)
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(TBB REQUIRED)
+find_package(Spectra 1.0 REQUIRED)  # sparse symmetric eigensolvers (header-only, libspectra-dev)
 find_package(OpenMP REQUIRED COMPONENTS CXX)
 find_package(CGAL REQUIRED)
 find_package(yaml-cpp REQUIRED)

@@ -1,9 +1,16 @@
 // Spectral formation control at scale. Targets on the 2-core machine (issue 6): the 1,260-individual hierarchy
 // × 991 frames in ≤ 2 s (BM_ShippedHierarchy1260: the shipped configs/formation-hierarchy-1260.yaml, read as
 // `throng formation` reads it); a flat 1,000-individual transition × 1,000 frames in ≤ 10 s
-// (BM_FlatTransition/n:1000).
+// (BM_FlatTransition/n:1000). Issue 19: 10,000 individuals × 1,000 frames in ≤ 5 s (BM_Crowd/n:10000, the
+// automatic hierarchy), with time and peak heap against n and their growth exponents (printed after the runs).
 //
 //   build/<dir>/bench/formation/bench_formation --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//   build/<dir>/bench/formation/bench_formation --benchmark_filter=BM_Crowd --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true       (one line: the scaling table and its growth exponents)
+//
+// The output goes through a console reporter that adds the growth lines (growth_reporter.h); the CPU column of
+// the BM_Crowd families is the whole process's CPU time (all threads), which stays meaningful on a shared
+// machine where the wall time does not.
 //
 // The cost is dense linear algebra through OpenBLAS (eigen-decompositions, products). OpenBLAS 0.3.21 does not
 // know this machine's CPU model and would fall back to its generic kernels, about 3 times slower here; the
@@ -14,9 +21,13 @@
 
 #include <throng/core/parallel.h>
 
+#include "../common/heap.h"
+#include "growth_reporter.h"
 #include "scenes.h"
 
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
 
 namespace {
 
@@ -98,4 +109,82 @@ void BM_PaperCrowdAutoHierarchy(benchmark::State& state) {
 }
 BENCHMARK(BM_PaperCrowdAutoHierarchy)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Largest speed of any individual between consecutive frames (m/s): the benchmarked output stays plausible.
+double largest_speed(const throng::CrowdMotion& m) {
+  double fastest = 0.0;
+  for (std::size_t f = 1; f < m.frame_count(); ++f)
+    fastest = std::max(fastest, (m.frame(f) - m.frame(f - 1)).rowwise().norm().maxCoeff() / (m.times[f] - m.times[f - 1]));
+  return fastest;
+}
+
+// Default options (flat up to Options::auto_group_size = 2,000 individuals, an automatic hierarchy of groups of
+// at most Options::auto_cluster_size = 250 items beyond), all threads; peak heap of the call including its
+// output (#frames × n × 3 doubles: 240 MB at 10,000).
+void run_scaling(benchmark::State& state, const throng::formation::Problem& problem, const Options& options) {
+  const throng::ThreadLimit threads(0);
+  double peak = 0.0, fastest = 0.0;
+  std::size_t frames = 0, groups = 0;
+  for (auto _ : state) {
+    throng::bench::HeapPeak heap;
+    const auto result = throng::formation::animate_formation(problem, options);
+    peak = std::max(peak, heap.stop());
+    state.PauseTiming();
+    frames = result.motion.frame_count();
+    groups = result.hierarchy.subgroups.size();
+    fastest = largest_speed(result.motion);
+    state.ResumeTiming();
+  }
+  const auto n = problem.keyframes[0].positions.rows();
+  state.counters["individuals"] = static_cast<double>(n);
+  state.counters["frames"] = static_cast<double>(frames);
+  state.counters["top_groups"] = static_cast<double>(groups);
+  state.counters["regime"] = n > options.auto_group_size ? 1.0 : 0.0;
+  state.counters["peak_heap_mb"] = peak;
+  state.counters["max_speed_m_per_s"] = fastest;
+}
+
+// A crowd that keeps its neighbours (tests/formation/scenes.h marching_crowd: 20 m march, a 20° turn and a
+// stretch, the fastest individual at 1 m/s on a straight line), 1,000 frames: the time and memory against n of issue 19.
+void BM_Crowd(benchmark::State& state) {
+  Options options;
+  const throng::formation::Problem problem = throng::test::marching_crowd(static_cast<int>(state.range(0)), options.frame_rate_hz);
+  run_scaling(state, problem, options);
+}
+BENCHMARK(BM_Crowd)
+    ->ArgName("n")
+    ->Arg(1000)
+    ->Arg(2000)
+    ->Arg(5000)
+    ->Arg(10000)
+    ->Arg(20000)
+    ->Arg(50000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
+
+// The same sizes on the flat transition's scene (every individual crosses to an unrelated place, 1,000 frames):
+// the graphs summed over the keyframes have no small separator, so the clustering takes its other path (plain
+// Lanczos, solver/formation/src/fiedler.h). Its speeds are not a walk's beyond a few hundred individuals: a
+// measure of the clustering, not a plausible crowd.
+void BM_CrowdReshuffled(benchmark::State& state) {
+  run_scaling(state, throng::test::flat_transition(static_cast<int>(state.range(0))), Options{});
+}
+BENCHMARK(BM_CrowdReshuffled)
+    ->ArgName("n")
+    ->Arg(5000)
+    ->Arg(10000)
+    ->Arg(20000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime();
+
 }  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  throng::bench::GrowthReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,11 +1,19 @@
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 
+#include <fcntl.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <array>
 #include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <unistd.h>
+#include <string>
 
 namespace throng {
 namespace {
@@ -48,53 +56,137 @@ extern "C" void remove_pending_and_exit(int signal) {
   ::_exit(128 + signal);
 }
 
-std::atomic<unsigned> counter{0};
+std::string reason(int error) { return std::strerror(error); }
+
+// What stands at `path` when it is not a regular file, for messages ("" when it is one or nothing is there).
+std::string not_regular(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return {};
+  if (S_ISREG(st.st_mode)) return {};
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  if (S_ISLNK(st.st_mode)) return "a symbolic link";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  if (S_ISFIFO(st.st_mode)) return "a pipe";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  return "not a regular file";
+}
+
+// 16 hex digits from the kernel's random source (getrandom; a fallback mixes time and address if it fails).
+std::string random_suffix() {
+  unsigned char bytes[8] = {};
+  if (::getrandom(bytes, sizeof bytes, 0) != static_cast<ssize_t>(sizeof bytes)) {
+    const auto mix = static_cast<std::uint64_t>(::getpid()) * 0x9E3779B97F4A7C15ull ^ reinterpret_cast<std::uintptr_t>(&bytes) ^
+                     static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+    std::memcpy(bytes, &mix, sizeof bytes);
+  }
+  static const char* hex = "0123456789abcdef";
+  std::string s;
+  for (unsigned char b : bytes) {
+    s += hex[b >> 4];
+    s += hex[b & 15];
+  }
+  return s;
+}
 
 }  // namespace
 
 AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(target)) {
+  if (target_.empty()) throw ConfigError("the output file name is empty; give a file name with -o");
+  if (!target_.has_filename() || target_.filename() == "." || target_.filename() == "..") {
+    throw IoError(target_.string() + ": names a folder, expected a file name");
+  }
   std::filesystem::path folder = target_.parent_path();
   if (folder.empty()) folder = ".";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(folder, ec)) {
+  struct stat st {};
+  if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
     throw IoError(target_.string() + ": cannot write, folder " + folder.string() + " does not exist");
   }
   if (::access(folder.c_str(), W_OK) != 0) throw IoError(target_.string() + ": cannot write, folder " + folder.string() + " is not writable");
-  if (std::filesystem::is_directory(target_, ec)) throw IoError(target_.string() + ": is a folder, expected a file name");
-  std::string name = ".";
-  name += target_.filename().string();
-  name += ".tmp-";
-  name += std::to_string(::getpid());
-  name += '-';
-  name += std::to_string(counter.fetch_add(1));
-  temporary_ = folder / name;
+  if (const std::string what = not_regular(target_); !what.empty()) {
+    throw IoError(target_.string() + ": is " + what + "; throng replaces only regular files (choose another output name)");
+  }
+  folder_fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder_fd_ < 0) throw IoError(target_.string() + ": cannot open folder " + folder.string() + " (" + reason(errno) + ")");
+  const std::string stem = "." + target_.filename().string() + ".tmp-";
+  for (int attempt = 0; attempt < 16 && fd_ < 0; ++attempt) {
+    const std::string name = stem + random_suffix();
+    fd_ = ::openat(folder_fd_, name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd_ >= 0) {
+      temporary_ = folder / name;
+    } else if (errno != EEXIST) {
+      const int error = errno;
+      ::close(folder_fd_);
+      throw IoError(target_.string() + ": cannot create a temporary file in " + folder.string() + " (" + reason(error) + ")");
+    }
+  }
+  if (fd_ < 0) {
+    ::close(folder_fd_);
+    throw IoError(target_.string() + ": cannot create a temporary file with a fresh name in " + folder.string());
+  }
   slot_ = claim(temporary_);
 }
 
 AtomicOutput::~AtomicOutput() {
-  if (!committed_) {
-    std::error_code ec;
-    std::filesystem::remove(temporary_, ec);
-  }
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_) ::unlinkat(folder_fd_, temporary_.filename().c_str(), 0);
   release(slot_);
+  ::close(folder_fd_);
+}
+
+std::filesystem::path AtomicOutput::descriptor_path() const {
+  std::filesystem::path proc = "/proc/self/fd/" + std::to_string(fd_);
+  struct stat by_fd {}, by_name {};
+  if (::stat(proc.c_str(), &by_fd) == 0 && ::fstat(fd_, &by_name) == 0 && by_fd.st_ino == by_name.st_ino &&
+      by_fd.st_dev == by_name.st_dev) {
+    return proc;
+  }
+  return temporary_;
+}
+
+void AtomicOutput::write(std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw IoError(target_.string() + ": write failed (" + reason(errno) + ")");
+    bytes.remove_prefix(static_cast<std::size_t>(n));
+  }
 }
 
 void AtomicOutput::commit() {
-  std::error_code ec;
-  std::filesystem::rename(temporary_, target_, ec);
-  if (ec) {
-    std::filesystem::remove(temporary_, ec);
-    throw IoError(target_.string() + ": cannot move the finished file into place (" + ec.message() + ")");
+  const auto fail = [&](const std::string& step, int error) {
+    ::unlinkat(folder_fd_, temporary_.filename().c_str(), 0);
+    throw IoError(target_.string() + ": " + step + " (" + reason(error) + ")");
+  };
+  if (::fsync(fd_) != 0) fail("cannot flush the finished file to disk", errno);
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0) fail("cannot close the finished file", errno);
+  if (const std::string what = not_regular(target_); !what.empty()) {
+    ::unlinkat(folder_fd_, temporary_.filename().c_str(), 0);
+    throw IoError(target_.string() + ": became " + what + " while throng ran; throng replaces only regular files");
+  }
+  if (::renameat(folder_fd_, temporary_.filename().c_str(), folder_fd_, target_.filename().c_str()) != 0) {
+    fail("cannot move the finished file into place", errno);
   }
   committed_ = true;
+  // The rename is durable once the folder is flushed; file systems that cannot flush a folder say EINVAL.
+  if (::fsync(folder_fd_) != 0 && errno != EINVAL && errno != EROFS) {
+    throw IoError(target_.string() + ": written, but its folder cannot be flushed to disk (" + reason(errno) + ")");
+  }
 }
 
 void install_interrupt_cleanup() {
-  struct sigaction action {};
-  action.sa_handler = remove_pending_and_exit;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  static const int signals[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1,
+                                SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF, SIGABRT};
+  for (int s : signals) {
+    struct sigaction old {};
+    if (::sigaction(s, nullptr, &old) != 0) continue;
+    if (old.sa_handler == SIG_IGN) continue;  // ignored by whoever started us (nohup): keep it so
+    struct sigaction action {};
+    action.sa_handler = remove_pending_and_exit;
+    sigfillset(&action.sa_mask);  // one cleanup at a time
+    ::sigaction(s, &action, nullptr);
+  }
 }
 
 void check_distinct(const std::filesystem::path& input, const std::filesystem::path& output) {

@@ -1,5 +1,8 @@
+#include "crowd_file_pose.h"
+
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
+#include <throng/io/checked_numbers.h>
 #include <throng/io/crowd_file.h>
 
 #include <Eigen/Geometry>
@@ -85,7 +88,7 @@ void write_scene(const h5::Group& parameters, const Scene& scene) {
   }
 }
 
-Scene read_scene(const h5::Group& parameters) {
+Scene read_scene(const h5::Group& parameters, const ReadLimits& limits) {
   Scene scene;
   if (!parameters.has("scene")) return scene;
   const h5::Group g = parameters.open_group("scene");
@@ -105,6 +108,12 @@ Scene read_scene(const h5::Group& parameters) {
     }
     const auto V = static_cast<std::int64_t>(vertices.shape[0]);
     const auto M = static_cast<std::int64_t>(motion.shape[0]);
+    // The obstacles built from the arrays (K of them, V vertices and M pose keys in all), against the limit.
+    const auto bytes = checked_sum(checked_product(K, sizeof(Obstacle) + 32).value_or(UINT64_MAX),
+                                   checked_sum(checked_product(vertices.shape[0], sizeof(Eigen::Vector2d)).value_or(UINT64_MAX),
+                                               checked_product(motion.shape[0], sizeof(PoseKey)).value_or(UINT64_MAX))
+                                       .value_or(UINT64_MAX));
+    MemoryBudget(limits).charge(bytes.value_or(UINT64_MAX), o.where(), std::to_string(K) + " obstacles");
     for (std::size_t k = 0; k < K; ++k) {
       const std::int64_t v0 = vertex_offset[k], v1 = vertex_offset[k + 1];
       const std::int64_t m0 = motion_offset[k], m1 = motion_offset[k + 1];
@@ -305,6 +314,21 @@ void apply_periodic_box(const PeriodicBox& box, const h5::Group& trajectory, con
   scene.region = r;
 }
 
+// The crowd's arrays, from the shapes alone, against the limit: positions (24 bytes per frame and agent),
+// per-frame ids (8) and velocities (24) when present, per-agent ids, radii and species. InputError (exit 3) with
+// the estimate before anything large is read.
+void check_crowd_memory(const h5::Group& trajectory, std::uint64_t T, std::uint64_t N, const ReadLimits& limits) {
+  std::uint64_t per_entry = 24;
+  if (trajectory.has("id/value")) per_entry += 8;
+  if (trajectory.has("velocity/value")) per_entry += 24;
+  const auto entries = checked_product(T, N);
+  const auto bytes = entries ? checked_product(*entries, per_entry) : std::nullopt;
+  const auto total = bytes ? checked_sum(*bytes, checked_product(N, 20).value_or(UINT64_MAX)) : std::nullopt;
+  MemoryBudget(limits).charge(total.value_or(UINT64_MAX), trajectory.where("position/value"),
+                              std::to_string(T) + " frames × " + std::to_string(N) + " agents × " + std::to_string(per_entry) +
+                                  " bytes");
+}
+
 }  // namespace
 
 void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra) {
@@ -321,7 +345,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 
   AtomicOutput output(path);
   {
-    h5::File f = h5::File::create(output.temporary(), path.filename().string());
+    h5::File f = h5::File::create(output.descriptor_path(), path.filename().string());
     {
       const h5::Group root = f.root();
       write_h5md_header(root, file.provenance.program_version);
@@ -333,6 +357,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       position.set_attribute_on("time", "unit", "s");
       write_box(trajectory, file.scene, T);
       if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false);
+      detail::write_pose_elements(trajectory, m);
 
       std::vector<std::int64_t> per_frame_id(T * N);
       for (std::uint64_t t = 0; t < T; ++t) {
@@ -358,7 +383,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       parameters.set_attribute("program_version", file.provenance.program_version);
       parameters.set_attribute("command_line", file.provenance.command_line);
       parameters.set_attribute("options", file.provenance.options);
-      parameters.set_attribute("seed", static_cast<std::int64_t>(file.provenance.seed));
+      parameters.set_attribute("seed", file.provenance.seed);
       parameters.set_attribute("inputs", file.provenance.inputs);
       parameters.set_attribute("credits", file.provenance.credits);
       const h5::Group agents = parameters.create_group("agents");
@@ -374,8 +399,8 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 
 h5::Group open_throng_parameters(const h5::File& file) { return file.root().open_group("parameters/throng"); }
 
-CrowdFile read_crowd_file(const std::filesystem::path& path) {
-  const h5::File f = h5::File::open(path);
+CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits) {
+  const h5::File f = h5::File::open(path, limits);
   const h5::Group root = f.root();
   CrowdFile out;
   CrowdMotion& m = out.motion;
@@ -394,19 +419,24 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
   if (!root.has("h5md")) throw InputError(root.where("h5md") + ": missing group; not an H5MD crowd file");
   const h5::Group trajectory = root.open_group(trajectory_path);
 
-  const auto position = trajectory.read_doubles("position/value", 3);
-  if (position.shape[2] != 3) {
-    throw InputError(trajectory.where("position/value") + ": has shape [" + std::to_string(position.shape[0]) + "][" +
-                     std::to_string(position.shape[1]) + "][" + std::to_string(position.shape[2]) + "], expected [frames][agents][3]");
+  const std::vector<std::uint64_t> shape = trajectory.shape("position/value");
+  if (shape.size() != 3) {
+    throw InputError(trajectory.where("position/value") + ": has rank " + std::to_string(shape.size()) + ", expected 3");
   }
-  const std::uint64_t T = position.shape[0], N = position.shape[1];
-  const auto time = trajectory.read_doubles("position/time", 1);
+  if (shape[2] != 3) {
+    throw InputError(trajectory.where("position/value") + ": has shape [" + std::to_string(shape[0]) + "][" +
+                     std::to_string(shape[1]) + "][" + std::to_string(shape[2]) + "], expected [frames][agents][3]");
+  }
+  const std::uint64_t T = shape[0], N = shape[1];
+  check_crowd_memory(trajectory, T, N, limits);
+  auto position = trajectory.read_doubles("position/value", 3);
+  auto time = trajectory.read_doubles("position/time", 1);
   if (time.shape[0] != T) {
     throw InputError(trajectory.where("position/time") + ": has " + std::to_string(time.shape[0]) + " entries for " +
                      std::to_string(T) + " frames of position/value");
   }
-  m.times = time.values;
-  m.positions = position.values;
+  m.times = std::move(time.values);
+  m.positions = std::move(position.values);
   for (std::uint64_t t = 0; t < T; ++t) {
     if (!std::isfinite(m.times[t])) throw InputError(trajectory.where("position/time") + ": frame " + std::to_string(t) + " has a non-finite time");
     if (t > 0 && !(m.times[t] > m.times[t - 1])) {
@@ -419,22 +449,22 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
   m.ids.assign(N, -1);
   std::vector<std::int64_t> per_frame_id;
   if (trajectory.has("id/value")) {
-    const auto id = trajectory.read_int64("id/value", 2);
+    auto id = trajectory.read_int64("id/value", 2);
     if (id.shape[0] != T || id.shape[1] != N) {
       throw InputError(trajectory.where("id/value") + ": has shape [" + std::to_string(id.shape[0]) + "][" +
                        std::to_string(id.shape[1]) + "], expected [" + std::to_string(T) + "][" + std::to_string(N) + "]");
     }
-    per_frame_id = id.values;
+    per_frame_id = std::move(id.values);
   }
   const bool ours = root.has("parameters/throng/agents");
   if (ours) {
     const h5::Group agents = root.open_group("parameters/throng/agents");
-    const auto ids = agents.read_int64("id", 1);
-    const auto radius = agents.read_doubles("radius", 1);
+    auto ids = agents.read_int64("id", 1);
+    auto radius = agents.read_doubles("radius", 1);
     if (ids.shape[0] != N) throw InputError(agents.where("id") + ": has " + std::to_string(ids.shape[0]) + " entries for " + std::to_string(N) + " agents");
     if (radius.shape[0] != N) throw InputError(agents.where("radius") + ": has " + std::to_string(radius.shape[0]) + " entries for " + std::to_string(N) + " agents");
-    m.ids = ids.values;
-    m.radii = radius.values;
+    m.ids = std::move(ids.values);
+    m.radii = std::move(radius.values);
   } else {
     m.radii.assign(N, 0.25);
     for (std::uint64_t n = 0; n < N; ++n) {
@@ -477,17 +507,18 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
   }
 
   if (trajectory.has("species")) {
-    const auto species = trajectory.read_int32("species", 1);
+    auto species = trajectory.read_int32("species", 1);
     if (species.shape[0] != N) throw InputError(trajectory.where("species") + ": has " + std::to_string(species.shape[0]) + " entries for " + std::to_string(N) + " agents");
-    m.species = species.values;
+    m.species = std::move(species.values);
   } else {
     m.species.assign(N, 0);
   }
   if (trajectory.has("velocity/value")) {
-    const auto velocity = trajectory.read_doubles("velocity/value", 3);
-    if (velocity.shape != position.shape) throw InputError(trajectory.where("velocity/value") + ": shape differs from position/value");
-    m.velocities = velocity.values;
+    auto velocity = trajectory.read_doubles("velocity/value", 3);
+    if (velocity.shape != shape) throw InputError(trajectory.where("velocity/value") + ": shape differs from position/value");
+    m.velocities = std::move(velocity.values);
   }
+  detail::read_pose_elements(trajectory, m);
 
   if (root.has("connectivity/formation_edges")) {
     const auto edges = root.open_group("connectivity").read_int32("formation_edges", 2);
@@ -507,11 +538,10 @@ CrowdFile read_crowd_file(const std::filesystem::path& path) {
     p.program_version = parameters.string_attribute("program_version").value_or("");
     p.command_line = parameters.string_attribute("command_line").value_or("");
     p.options = parameters.string_attribute("options").value_or("");
-    const auto seed = parameters.int_attribute("seed");
-    if (!seed.empty()) p.seed = static_cast<std::uint64_t>(seed.front());
+    p.seed = parameters.unsigned_attribute("seed").value_or(0);
     p.inputs = parameters.string_array_attribute("inputs");
     p.credits = parameters.string_array_attribute("credits");
-    out.scene = read_scene(parameters);
+    out.scene = read_scene(parameters, limits);
   }
   if (const auto box = read_periodic_box(trajectory)) {
     apply_periodic_box(*box, trajectory, m, out.scene);

@@ -4,10 +4,14 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include <variant>
 
 extern char** environ;
@@ -454,14 +458,6 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   return svg.text();
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw IoError(path.string() + ": cannot be created");
-  out << text;
-  out.close();
-  if (!out) throw IoError(path.string() + ": write failed (is the disk full?)");
-}
-
 }  // namespace
 
 std::string group_colour(std::int64_t index) {
@@ -471,14 +467,23 @@ std::string group_colour(std::int64_t index) {
   return palette[k];
 }
 
-int run_program(const std::vector<std::string>& argv) {
+// Runs a program with stdin and stdout on the given descriptors; its exit status, or -1 if it could not start.
+int run_program(const std::vector<std::string>& argv, int input_fd, int output_fd) {
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, input_fd, 0);
+  posix_spawn_file_actions_adddup2(&actions, output_fd, 1);
   pid_t pid = 0;
-  if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+  const int started = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (started != 0) return -1;
   int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
@@ -500,11 +505,16 @@ void write_plot(const std::filesystem::path& path, const std::vector<PlotLayer>&
   const std::string svg = svg_document(layers, options);
   AtomicOutput output(path);
   if (extension == ".svg") {
-    write_text(output.temporary(), svg);
+    output.write(svg);
   } else {
-    AtomicOutput source(path.parent_path() / (path.stem().string() + ".svg"));  // removed when done, never committed
-    write_text(source.temporary(), svg);
-    const int status = run_program({"rsvg-convert", "--format=png", "-o", output.temporary().string(), source.temporary().string()});
+    // rsvg-convert reads the SVG from a temporary file (never committed) and writes the PNG into the output's
+    // temporary, both through descriptors: it opens no name in the output folder.
+    AtomicOutput source(path.parent_path() / (path.stem().string() + ".svg"));
+    source.write(svg);
+    const int input = ::open(source.descriptor_path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (input < 0) throw IoError(path.string() + ": cannot reopen the SVG for rsvg-convert (" + std::string(std::strerror(errno)) + ")");
+    const int status = run_program({"rsvg-convert", "--format=png"}, input, output.descriptor());
+    ::close(input);
     if (status == -1) throw IoError(path.string() + ": PNG needs rsvg-convert (Debian package librsvg2-bin); write .svg instead");
     if (status != 0) throw IoError(path.string() + ": rsvg-convert failed with status " + std::to_string(status));
   }

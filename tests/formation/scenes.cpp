@@ -149,4 +149,19 @@ formation::Problem flat_transition(int n) {
   return problem;
 }
 
+formation::Problem marching_crowd(int n, double& frame_rate_hz) {
+  const double radius = 0.8 * std::sqrt(static_cast<double>(n));
+  const Eigen::MatrixXd start = scattered(n, radius, 1, 0.6);
+  const Eigen::Matrix2d stretch = Eigen::Vector2d(1.3, 1.0 / 1.3).asDiagonal();
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(20.0 * pi / 180.0).toRotationMatrix();
+  const Eigen::MatrixXd end = (start * (turn * stretch).transpose()).rowwise() + Eigen::RowVector2d(20.0, 0.0);
+  const double farthest = (end - start).rowwise().norm().maxCoeff();
+  const double duration = farthest / 1.0;
+  frame_rate_hz = 1000.0 / duration;
+  formation::Problem problem;
+  problem.keyframes.push_back(formation::Keyframe{0.0, start, {}});
+  problem.keyframes.push_back(formation::Keyframe{duration, end, {}});
+  return problem;
+}
+
 }  // namespace throng::test

@@ -14,7 +14,14 @@ namespace throng::test {
 formation::Problem paper_crowd();
 
 /// n individuals scattered in a disc (at least 0.6 m apart) moving to another scatter 10 m away over 33.3 s:
-/// 1,000 frames at 30 fps.
+/// 1,000 frames at 30 fps. The two scatters are unrelated: every individual crosses the crowd (beyond walking
+/// speed for large n; the hard case for the graphs, whose sum over the keyframes has no small separator).
 formation::Problem flat_transition(int n);
+
+/// n individuals scattered in a disc (at least 0.6 m apart) marching 20 m along x while the crowd turns by 20°
+/// and stretches into an ellipse (axes × 1.3 and / 1.3): everyone keeps their neighbours. The second keyframe
+/// comes when the fastest individual, walking straight, would need 1 m/s; `frame_rate_hz` (out) gives 1,000
+/// frames over that time.
+formation::Problem marching_crowd(int n, double& frame_rate_hz);
 
 }  // namespace throng::test

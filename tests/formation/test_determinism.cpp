@@ -45,3 +45,23 @@ TEST_CASE("one thread and two threads give the same bits: hierarchy, matching an
   CHECK(one.correspondence == two.correspondence);
   CHECK(one.collision.satisfied);
 }
+
+TEST_CASE("one thread and two threads give the same bits: an automatic hierarchy of 2,400 (sparse Fiedler vectors, "
+          "both solvers, halves bisected in parallel)") {
+  const Eigen::MatrixXd start = throng::test::scattered(2400, 40.0, 60, 0.6);
+  for (bool reshuffled : {false, true}) {
+    INFO("reshuffled " << reshuffled);
+    Problem p;
+    p.keyframes.push_back(Keyframe{0.0, start, {}});
+    // Kept neighbours (a turned, moved copy: a nearly planar summed graph) or unrelated places (an expander).
+    p.keyframes.push_back(Keyframe{20.0, reshuffled ? throng::test::scattered(2400, 40.0, 61, 0.6)
+                                                    : throng::test::rigid_2d(start, 0.3, {15.0, 0.0}), {}});
+    Options o;
+    o.frame_rate_hz = 1;
+    const Result one = run(p, o, 1);
+    const Result two = run(p, o, 2);
+    REQUIRE(one.hierarchy.subgroups.size() == 10);  // 2,400 > 2,000: groups of at most 250
+    CHECK(one.motion.positions == two.motion.positions);
+    CHECK(one.motion.species == two.motion.species);
+  }
+}

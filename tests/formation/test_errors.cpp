@@ -130,6 +130,7 @@ TEST_CASE("options out of range are ConfigErrors") {
   fails([](Options& o) { o.frame_rate_hz = 0; }, "frame_rate");
   fails([](Options& o) { o.tension = 1.5; }, "tension");
   fails([](Options& o) { o.auto_group_size = 1; }, "auto_group_size");
+  fails([](Options& o) { o.auto_cluster_size = 1; }, "auto_cluster_size");
   fails([](Options& o) { o.radius_m = -1; }, "radius");
   fails([](Options& o) { o.collision.enabled = true; o.collision.min_distance_m = 0; }, "collision.min_distance");
   fails([](Options& o) { o.collision.enabled = true; o.collision.smoothing_passes = 0; }, "smoothing_passes");

@@ -160,3 +160,29 @@ TEST_CASE("without a tree the hierarchy is automatic only beyond auto_group_size
   CHECK(animate_formation(p, o).hierarchy.subgroups.empty());
   CHECK(animate_formation(p, Options{}).hierarchy.subgroups.empty());  // 20 individuals: flat by default
 }
+
+namespace {
+// Largest item count (members + subgroups) of any group of the tree.
+int largest_group(const Group& g) {
+  int largest = static_cast<int>(g.members.size() + g.subgroups.size());
+  for (const Group& s : g.subgroups) largest = std::max(largest, largest_group(s));
+  return largest;
+}
+}  // namespace
+
+TEST_CASE("an automatic hierarchy's groups have at most min(auto_group_size, auto_cluster_size) items, by default 250") {
+  CHECK(Options{}.auto_cluster_size == 250);
+  Problem p = clustered(5);
+  p.hierarchy.reset();
+  const int n = groups * per_group;
+  Options o;
+  o.auto_group_size = n - 1;  // clustered ...
+  o.auto_cluster_size = 3;    // ... into groups of at most 3 items: three levels for 20 individuals
+  const Result small = animate_formation(p, o);
+  CHECK(largest_group(small.hierarchy) <= 3);
+  CHECK(largest_group(small.hierarchy) >= 2);
+  o.auto_cluster_size = 1000;  // the other bound: at most auto_group_size
+  CHECK(largest_group(animate_formation(p, o).hierarchy) <= n - 1);
+  for (std::size_t k = 0; k < 3; ++k)
+    CHECK((small.motion.frame(k * 60).leftCols(2) - p.keyframes[k].positions).cwiseAbs().maxCoeff() <= 1e-12 * 20);
+}

@@ -38,7 +38,7 @@ TEST_CASE("CSV export lists present agents only and reads back to the same motio
 TEST_CASE("malformed CSV rows name their line") {
   const auto dir = test::scratch_dir("io_csv_bad");
   std::ofstream(dir / "a.csv") << "time,id,x,y,z\n0,1,0,0,0\n0.5,1,zero,0,0\n";
-  CHECK_THROWS_WITH(read_csv(dir / "a.csv"), Catch::Contains("a.csv:3: a value is not a number"));
+  CHECK_THROWS_WITH(read_csv(dir / "a.csv"), Catch::Contains("a.csv:3: x 'zero' is not a number"));
   std::ofstream(dir / "b.csv") << "t,i,x,y,z\n";
   CHECK_THROWS_WITH(read_csv(dir / "b.csv"), Catch::Contains("expected time,id,x,y,z"));
   std::ofstream(dir / "c.csv") << "time,id,x,y,z\n0,1,0,0,0\n0,1,1,0,0\n";

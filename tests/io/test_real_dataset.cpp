@@ -97,7 +97,7 @@ TEST_CASE("importer errors: missing folder, malformed row, unknown frame rate") 
   std::ofstream(dir / "mine" / "obsmat.txt") << "1 1 0 0 0 0 0 0\n2 1 0 0 zero 0 0 0\n";
   RealDatasetOptions o;
   o.video_fps = 10;
-  CHECK_THROWS_WITH(import_real_dataset(dir / "mine", o), Catch::Contains("obsmat.txt:2: expected 8 numbers"));
+  CHECK_THROWS_WITH(import_real_dataset(dir / "mine", o), Catch::Contains("obsmat.txt:2: 'zero' is not a number"));
   std::ofstream(dir / "mine" / "obsmat.txt") << "1 1 0 0 0 0 0 0\n";
   CHECK_THROWS_AS(import_real_dataset(dir / "mine", {}), ConfigError);
   CHECK(import_real_dataset(dir / "mine", o).motion.agent_count() == 1);

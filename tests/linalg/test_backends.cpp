@@ -1,6 +1,7 @@
 #include "problems.h"
 #include <algorithm>
 
+#include <test_paths.h>
 #include <throng/core/errors.h>
 #include <throng/linalg/spd_solver.h>
 
@@ -85,7 +86,7 @@ bool has_petsc() {
 }  // namespace
 
 TEST_CASE("the petsc backend takes other Krylov methods and additive Schwarz on METIS parts") {
-  if (!has_petsc()) test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
+  if (!has_petsc()) throng::test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
   // CG's default test is on the true residual at 1e-12; cond(Q) ≈ 1e2 (problems.h) keeps other methods' own
   // (preconditioned) norms within a factor cond of it.
   const auto [cg, cg_method] = petsc_solve("", "t_cg_");
@@ -107,7 +108,7 @@ TEST_CASE("the petsc backend takes other Krylov methods and additive Schwarz on 
 }
 
 TEST_CASE("bad PETSc options are configuration errors naming them") {
-  if (!has_petsc()) test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
+  if (!has_petsc()) throng::test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
   for (const std::string options : {"-ksp_type bogus", "-pc_type nonsense", "-parts_per_rank 0"}) {
     CAPTURE(options);
     try {
@@ -154,7 +155,7 @@ TEST_CASE("the eigen backend adopts an analysis only for the pattern it was made
 }
 
 TEST_CASE("the petsc backend is iterative by default and direct as preonly with a Cholesky factor") {
-  if (!has_petsc()) test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
+  if (!has_petsc()) throng::test::skip("this build has no PETSc (-DTHRONG_WITH_PETSC=OFF)");
   CHECK(make_spd_solver({})->is_direct());  // eigen
   const SparseMatrix A = throng::test::random_objective(300, 41);
   const SparseMatrix Q = SparseMatrix(A.transpose()) * A;

@@ -1,9 +1,11 @@
 #include <throng/core/errors.h>
+#include <throng/io/checked_numbers.h>
 #include <throng/io/crowd_file.h>
 #include <throng/io/real_dataset.h>
 #include <throng/io/scene_config.h>
 #include <throng/io/tiling_job.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -603,21 +605,79 @@ double attribute(const h5::Group& g, const std::string& name) {
   return *v;
 }
 
+// A check option stored as an attribute, within the range the tiling job allows for it (a file written by hand
+// could hold 1e-9 for a step the checker walks every path with).
+double attribute_in(const h5::Group& g, const std::string& name, Range range) {
+  const double v = attribute(g, name);
+  if (!range.contains(v)) {
+    std::ostringstream m;
+    m << g.where() << " attribute " << name << " = " << v << ", expected " << range.describe();
+    throw InputError(m.str());
+  }
+  return v;
+}
+
+// A stored index as the unsigned 32-bit index the tiling types hold (InputError naming the dataset otherwise).
+std::uint32_t index32(std::int64_t v, const h5::Group& g, const std::string& name, std::size_t row) {
+  if (v < 0 || v > static_cast<std::int64_t>(UINT32_MAX)) {
+    throw InputError(g.where(name) + ": row " + std::to_string(row) + " holds index " + std::to_string(v) + ", expected 0 to 2^32 − 1");
+  }
+  return static_cast<std::uint32_t>(v);
+}
+
+// A stored copy offset (whole periods along an axis) as an int.
+int copy_offset(std::int64_t v, const h5::Group& g, const std::string& name, std::size_t row) {
+  if (v < -1000000 || v > 1000000) {
+    throw InputError(g.where(name) + ": row " + std::to_string(row) + " holds copy offset " + std::to_string(v) + ", expected −10^6 to 10^6");
+  }
+  return static_cast<int>(v);
+}
+
 }  // namespace
 
-bool has_tiling_data(const std::filesystem::path& path) {
-  if (!std::filesystem::exists(path)) throw IoError(path.string() + ": no such file");
-  const h5::File file = h5::File::open(path);
+namespace {
+
+// With obstacles, the checker tests every path segment at max(1, ⌈length / obstacle_step⌉,
+// ⌈duration / obstacle_step_time⌉) + 1 points (check.cpp). A file's steps are data: 1e-9 m would keep `check-tiling` busy for days, so the count is
+// estimated first and refused above this many points (a 1,000-character, 100 s tiling at the default steps
+// tests a few million).
+constexpr double max_obstacle_points = 1e8;
+
+void check_obstacle_work(const TilingData& data, const h5::Group& g) {
+  if (data.environment.scene.obstacles.empty()) return;  // the checker samples paths only against obstacles
+  const CheckOptions& c = data.check;
+  double points = 0;
+  for (const Instance& x : data.tiling.instances) {
+    for (const Path& p : x.paths) {
+      for (std::size_t s = 0; s + 1 < p.times.size(); ++s) {
+        const double length = (p.positions[s + 1] - p.positions[s]).norm(), duration = p.times[s + 1] - p.times[s];
+        points += std::max({1.0, std::ceil(length / c.obstacle_step_m), std::ceil(duration / c.obstacle_step_s)}) + 1;
+      }
+    }
+  }
+  if (!(points <= max_obstacle_points)) {  // NaN (a non-finite sample) refused too
+    std::ostringstream m;
+    m << g.where() << ": obstacle_step = " << c.obstacle_step_m << " m and obstacle_step_time = " << c.obstacle_step_s
+      << " s make the check test about " << points << " points along the paths, more than " << max_obstacle_points
+      << "; refused before checking";
+    throw InputError(m.str());
+  }
+}
+
+}  // namespace
+
+bool has_tiling_data(const std::filesystem::path& path, const ReadLimits& limits) {
+  const h5::File file = h5::File::open(path, limits);
   if (!file.root().has("parameters")) return false;
   const h5::Group parameters = file.root().open_group("parameters");
   return parameters.has("throng") && parameters.open_group("throng").has("tiling");
 }
 
-TilingData read_tiling_data(const std::filesystem::path& path) {
+TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits& limits) {
   TilingData out;
-  const CrowdFile crowd = read_crowd_file(path);
+  const CrowdFile crowd = read_crowd_file(path, limits);
   out.environment.scene = crowd.scene;
-  const h5::File file = h5::File::open(path);
+  const h5::File file = h5::File::open(path, limits);
   const h5::Group params = open_throng_parameters(file);
   if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
   const h5::Group g = params.open_group("tiling");
@@ -657,6 +717,13 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
   const std::vector<double> samples = doubles(lib, "samples", 4, &S);
   const std::vector<std::int64_t> constraints = ints(lib, "constraints", 5, &C);
   const std::size_t K = names.size();
+  // The library built from the arrays (K types, F fragments, S samples of position, heading and time: 32 bytes),
+  // against the limit (the arrays themselves were charged to the file's budget as they were read).
+  MemoryBudget(limits).charge(checked_sum(checked_product(K, sizeof(PatchType)).value_or(UINT64_MAX),
+                         checked_sum(checked_product(F, sizeof(Fragment)).value_or(UINT64_MAX),
+                                     checked_product(S, 32).value_or(UINT64_MAX)).value_or(UINT64_MAX))
+                 .value_or(UINT64_MAX),
+             lib.where(), std::to_string(K) + " patch types, " + std::to_string(F) + " fragments, " + std::to_string(S) + " samples");
   if (labels.size() != K || preference.size() != K || type_fragments.size() != K + 1 || radius.size() != F ||
       type_fragments.back() != static_cast<std::int64_t>(F)) {
     throw InputError(lib.where() + ": the library's datasets disagree in size");
@@ -671,6 +738,11 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
     for (auto f = static_cast<std::size_t>(type_fragments[k]); f < static_cast<std::size_t>(type_fragments[k + 1]); ++f) {
       Fragment fr;
       fr.kind = fragments[4 * f] == 0 ? FragmentKind::character : FragmentKind::prop;
+      if (fragments[4 * f + 1] < 0 || fragments[4 * f + 2] < 0 ||
+          static_cast<std::uint64_t>(fragments[4 * f + 1]) >= L.pose_classes.size() ||
+          static_cast<std::uint64_t>(fragments[4 * f + 2]) >= L.pose_classes.size()) {
+        bad("fragment " + std::to_string(f) + " names a pose class outside 0.." + std::to_string(L.pose_classes.size()) + "-1");
+      }
       fr.entry_class = static_cast<std::size_t>(fragments[4 * f + 1]);
       fr.exit_class = static_cast<std::size_t>(fragments[4 * f + 2]);
       fr.radius_m = radius[f];
@@ -687,6 +759,9 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
     L.types.push_back(std::move(t));
   }
   for (std::size_t c = 0; c < C; ++c) {
+    for (std::size_t j = 0; j < 5; ++j) {
+      if (constraints[5 * c + j] < 0) bad("constraint " + std::to_string(c) + " holds a negative index");
+    }
     const auto k = static_cast<std::size_t>(constraints[5 * c]);
     if (k >= K) bad("a constraint names a missing type");
     L.types[k].constraints.push_back({static_cast<std::size_t>(constraints[5 * c + 1]), static_cast<std::size_t>(constraints[5 * c + 2]),
@@ -701,6 +776,9 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
   const std::vector<std::int32_t> keyframed = inst.read_int32("keyframed", 1).values;
   const std::vector<double> paths = doubles(inst, "paths", 4, &P);
   if (type.size() != I || keyframed.size() != I) throw InputError(inst.where() + ": the instance datasets disagree in size");
+  MemoryBudget(limits).charge(checked_sum(checked_product(I, sizeof(Instance)).value_or(UINT64_MAX), checked_product(P, 32).value_or(UINT64_MAX))
+                  .value_or(UINT64_MAX),
+              inst.where(), std::to_string(I) + " instances, " + std::to_string(P) + " path samples");
   std::size_t at = 0;
   for (std::size_t i = 0; i < I; ++i) {
     Instance x;
@@ -730,10 +808,17 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
   const std::vector<std::int64_t> conn = ints(g, "connections", 7, &NC);
   for (std::size_t c = 0; c < NC; ++c) {
     const std::int64_t* v = conn.data() + 7 * c;
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0 || v[3] < 0) throw InputError(g.where("connections") + ": negative index in row " + std::to_string(c));
-    out.tiling.connections.push_back({{static_cast<std::uint32_t>(v[0]), static_cast<std::uint32_t>(v[1])},
-                                      {static_cast<std::uint32_t>(v[2]), static_cast<std::uint32_t>(v[3])},
-                                      {static_cast<int>(v[4]), static_cast<int>(v[5]), static_cast<int>(v[6])}});
+    const std::uint32_t from = index32(v[0], g, "connections", c), from_fragment = index32(v[1], g, "connections", c);
+    const std::uint32_t to = index32(v[2], g, "connections", c), to_fragment = index32(v[3], g, "connections", c);
+    const auto& instances = out.tiling.instances;
+    if (from >= instances.size() || to >= instances.size() || from_fragment >= instances[from].paths.size() ||
+        to_fragment >= instances[to].paths.size()) {
+      throw InputError(g.where("connections") + ": row " + std::to_string(c) + " names a missing instance or fragment");
+    }
+    out.tiling.connections.push_back({{from, from_fragment},
+                                      {to, to_fragment},
+                                      {copy_offset(v[4], g, "connections", c), copy_offset(v[5], g, "connections", c),
+                                       copy_offset(v[6], g, "connections", c)}});
   }
   const auto zones = [&](const std::string& name) {
     std::uint64_t n = 0;
@@ -755,20 +840,22 @@ TilingData read_tiling_data(const std::filesystem::path& path) {
       throw InputError(g.where("agents/pieces") + ": row " + std::to_string(k) + " names a missing agent, instance or fragment");
     }
     out.pieces[static_cast<std::size_t>(v[0])].push_back(
-        {{static_cast<std::uint32_t>(v[1]), static_cast<std::uint32_t>(v[2])},
-         {static_cast<int>(v[3]), static_cast<int>(v[4]), static_cast<int>(v[5])}});
+        {{index32(v[1], g, "agents/pieces", k), index32(v[2], g, "agents/pieces", k)},
+         {copy_offset(v[3], g, "agents/pieces", k), copy_offset(v[4], g, "agents/pieces", k), copy_offset(v[5], g, "agents/pieces", k)}});
   }
   CheckOptions& c = out.check;
-  c.limits.stretch_m = attribute(g, "limit_stretch");
-  c.limits.bend_rad = attribute(g, "limit_bend");
-  c.limits.time_shift_s = attribute(g, "limit_time_shift");
-  c.limits.frame_period_s = attribute(g, "limit_frame_period");
-  c.limits.bend_min_segment_m = attribute(g, "limit_bend_min_segment");
-  c.match.distance_m = attribute(g, "match_distance");
-  c.match.angle_rad = attribute(g, "match_angle");
-  c.match.time_s = attribute(g, "match_time");
-  c.obstacle_step_m = attribute(g, "obstacle_step");
-  c.obstacle_step_s = attribute(g, "obstacle_step_time");
+  // The ranges of the tiling job's keys (bind above), in the file's units (radians, seconds per frame).
+  c.limits.stretch_m = attribute_in(g, "limit_stretch", Range::positive());
+  c.limits.bend_rad = attribute_in(g, "limit_bend", Range{0, std::numbers::pi * (1 + 1e-12), true, false});
+  c.limits.time_shift_s = attribute_in(g, "limit_time_shift", Range::positive());
+  c.limits.frame_period_s = attribute_in(g, "limit_frame_period", Range::positive());
+  c.limits.bend_min_segment_m = attribute_in(g, "limit_bend_min_segment", Range::non_negative());
+  c.match.distance_m = attribute_in(g, "match_distance", Range::positive());
+  c.match.angle_rad = attribute_in(g, "match_angle", Range{0, std::numbers::pi * (1 + 1e-12), true, false});
+  c.match.time_s = attribute_in(g, "match_time", Range::positive());
+  c.obstacle_step_m = attribute_in(g, "obstacle_step", Range::positive());
+  c.obstacle_step_s = attribute_in(g, "obstacle_step_time", Range::positive());
+  check_obstacle_work(out, g);
   return out;
 }
 

@@ -1,8 +1,10 @@
 #include <throng/core/crowd_motion.h>
 #include <throng/core/errors.h>
 
+#include <set>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 namespace throng {
 
@@ -76,6 +78,127 @@ void CrowdMotion::validate(const std::string& what) const {
       fail("agent " + std::to_string(ids[n]) + " has radius " + std::to_string(radii[n]) + ", expected a finite value ≥ 0");
     }
   }
+  if (!orientations.empty()) {
+    if (orientations.size() != T * N * 4) {
+      fail("orientations hold " + std::to_string(orientations.size()) + " values, expected frames × agents × 4 = " +
+           std::to_string(T) + " × " + std::to_string(N) + " × 4");
+    }
+    for (std::size_t t = 0; t < T; ++t) {
+      for (std::size_t n = 0; n < N; ++n) {
+        if (!present(t, n)) continue;
+        const Eigen::Vector4d q = orientation(t, n).coeffs();
+        if (!q.allFinite() || std::abs(q.norm() - 1.0) > orientation_tolerance) {
+          fail("agent " + std::to_string(ids[n]) + " at frame " + std::to_string(t) + " has orientation (" +
+               std::to_string(q[0]) + ", " + std::to_string(q[1]) + ", " + std::to_string(q[2]) + ", " +
+               std::to_string(q[3]) + "), expected a finite unit quaternion (x, y, z, w)");
+        }
+      }
+    }
+  }
+  std::set<std::pair<std::string, std::string>> entries;
+  for (std::size_t k = 0; k < action_table.size(); ++k) {
+    if (action_table[k].name.empty()) fail("action_table entry " + std::to_string(k) + " has an empty name");
+    if (!entries.emplace(action_table[k].name, action_table[k].prop).second) {
+      fail("action_table entry " + std::to_string(k) + " ('" + action_table[k].name + "', prop '" + action_table[k].prop +
+           "') repeats an earlier entry");
+    }
+  }
+  if (!actions.empty()) {
+    if (actions.size() != T * N) {
+      fail("actions hold " + std::to_string(actions.size()) + " values, expected frames × agents = " + std::to_string(T) +
+           " × " + std::to_string(N));
+    }
+    if (action_table.empty()) fail("actions are given without an action_table naming them");
+    for (std::size_t t = 0; t < T; ++t) {
+      for (std::size_t n = 0; n < N; ++n) {
+        const std::int32_t a = action(t, n);
+        if (present(t, n) && (a < 0 || static_cast<std::size_t>(a) >= action_table.size())) {
+          fail("agent " + std::to_string(ids[n]) + " at frame " + std::to_string(t) + " has action " + std::to_string(a) +
+               ", expected 0.." + std::to_string(action_table.size() - 1) + " (an index into action_table)");
+        }
+      }
+    }
+  }
+}
+
+const std::vector<ActionKind>& standard_actions() {
+  static const std::vector<ActionKind> table{{"walk", ""}, {"stand", ""}, {"run", ""}};
+  return table;
+}
+
+std::optional<Eigen::Vector3d> path_velocity(const CrowdMotion& m, std::size_t t, std::size_t n) {
+  if (!m.present(t, n)) return std::nullopt;
+  if (!m.velocities.empty()) {
+    const Eigen::Map<const Eigen::Vector3d> v(m.velocities.data() + m.index(t, n));
+    if (v.allFinite()) return Eigen::Vector3d(v);
+  }
+  const bool before = t > 0 && m.present(t - 1, n);
+  const bool after = t + 1 < m.frame_count() && m.present(t + 1, n);
+  if (!before && !after) return std::nullopt;
+  const std::size_t a = before ? t - 1 : t;
+  const std::size_t b = after ? t + 1 : t;
+  return Eigen::Vector3d((m.position(b, n) - m.position(a, n)) / (m.times[b] - m.times[a]));
+}
+
+Eigen::Quaterniond facing_along(const Eigen::Vector3d& d) {
+  const double ground = std::hypot(d.x(), d.y());
+  if (ground == 0.0 && d.z() == 0.0) return Eigen::Quaterniond::Identity();
+  if (d.z() == 0.0) {
+    // A yaw θ about +z: (w, z) = (cos θ/2, sin θ/2), the unit bisector of +x and u = (cos θ, sin θ), found without
+    // trigonometry (the exporters ask this for every agent and frame). u + x̂ = 2 cos(θ/2) (cos θ/2, sin θ/2)
+    // loses its digits as θ → π, so for cos θ < 0 the bisector comes from u − x̂ = 2 sin(θ/2) (−sin θ/2, cos θ/2).
+    const double c = d.x() / ground, s = d.y() / ground;
+    double w, z;
+    if (c >= 0) {
+      const double norm = std::sqrt(2.0 * (1.0 + c));
+      w = (1.0 + c) / norm, z = s / norm;
+    } else {
+      const double norm = std::sqrt(2.0 * (1.0 - c));
+      const double sign = s < 0 ? -1.0 : 1.0;  // sign of sin(θ/2) = sign of θ in (−π, π]
+      w = sign * s / norm, z = sign * (1.0 - c) / norm;
+    }
+    return Eigen::Quaterniond(w, 0.0, 0.0, z);
+  }
+  const double yaw = ground > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
+  const double pitch = std::atan2(d.z(), ground);
+  // R_y(−pitch) lifts +x toward +z; R_z(yaw) then turns it about the vertical.
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-pitch, Eigen::Vector3d::UnitY()));
+}
+
+std::int32_t path_action(const CrowdMotion& m, std::size_t t, std::size_t n, const PathPoseRule& rule) {
+  const auto v = path_velocity(m, t, n);
+  const double speed = v ? v->norm() : 0.0;
+  if (speed < rule.standing_speed) return action_stand;
+  return speed >= rule.running_speed ? action_run : action_walk;
+}
+
+PathFacing::PathFacing(const CrowdMotion& motion, PathPoseRule rule)
+    : motion_(motion), rule_(rule), last_(motion.agent_count(), Eigen::Quaterniond::Identity()),
+      next_(motion.agent_count(), std::size_t(-1)) {}
+
+std::optional<Eigen::Quaterniond> PathFacing::moving_facing(std::size_t t, std::size_t n) const {
+  const auto v = path_velocity(motion_, t, n);
+  if (!v || v->norm() < rule_.standing_speed) return std::nullopt;
+  return facing_along(*v);
+}
+
+Eigen::Quaterniond PathFacing::at(std::size_t t, std::size_t n) {
+  if (next_[n] != t) {
+    // (Re)start: the facing before any frame is where the agent first moves (+x if it never does).
+    last_[n] = Eigen::Quaterniond::Identity();
+    for (std::size_t s = 0; s < motion_.frame_count(); ++s) {
+      if (const auto f = moving_facing(s, n)) {
+        last_[n] = *f;
+        break;
+      }
+    }
+    for (std::size_t s = 0; s < t; ++s) {
+      if (const auto f = moving_facing(s, n)) last_[n] = *f;
+    }
+  }
+  if (const auto f = moving_facing(t, n)) last_[n] = *f;
+  next_[n] = t + 1;
+  return last_[n];
 }
 
 }  // namespace throng

@@ -57,7 +57,8 @@ Eigen::Vector3d rotate(const Eigen::Vector3d& v, const Eigen::Vector3d& axis, do
 
 }  // namespace
 
-CoefficientTrack::CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys) : keys_(keys) {
+CoefficientTrack::CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys, int linear_rows)
+    : linear_rows_(linear_rows), keys_(keys) {
   const int k_count = static_cast<int>(keys.size());
   const Eigen::Index m = keys.front().rows();
   dimension_ = static_cast<int>(keys.front().cols());
@@ -65,7 +66,7 @@ CoefficientTrack::CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys) : k
   for (int k = 0; k < k_count; ++k) length_.col(k) = keys[static_cast<std::size_t>(k)].rowwise().norm();
   if (dimension_ == 2) {
     angle_.setZero(m, k_count);
-    for (Eigen::Index j = 1; j < m; ++j) {
+    for (Eigen::Index j = linear_rows_; j < m; ++j) {
       const std::vector<int> source = direction_sources(length_.row(j));
       for (int k = 0; k < k_count; ++k) {
         const int from = source[static_cast<std::size_t>(k)];
@@ -75,7 +76,7 @@ CoefficientTrack::CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys) : k
     }
   } else {
     direction_.assign(static_cast<std::size_t>(k_count), Eigen::MatrixXd::Zero(m, 3));
-    for (Eigen::Index j = 1; j < m; ++j) {
+    for (Eigen::Index j = linear_rows_; j < m; ++j) {
       const std::vector<int> source = direction_sources(length_.row(j));
       for (int k = 0; k < k_count; ++k) {
         const int from = source[static_cast<std::size_t>(k)];
@@ -98,7 +99,7 @@ CoefficientTrack::Interval CoefficientTrack::interval(const ControlKeys& keys) c
   for (int f = 0; f < 3; ++f) {
     const Eigen::MatrixXd& from = direction_[static_cast<std::size_t>(keys.keys[static_cast<std::size_t>(f)])];
     const Eigen::MatrixXd& to = direction_[static_cast<std::size_t>(keys.keys[static_cast<std::size_t>(f + 1)])];
-    for (Eigen::Index j = 1; j < m; ++j) {
+    for (Eigen::Index j = linear_rows_; j < m; ++j) {
       Eigen::Vector3d axis;
       double angle = 0.0;
       shortest_rotation(from.row(j).transpose(), to.row(j).transpose(), axis, angle);
@@ -112,10 +113,12 @@ CoefficientTrack::Interval CoefficientTrack::interval(const ControlKeys& keys) c
 void CoefficientTrack::evaluate(const Interval& interval, const SplineWeights& w, Eigen::Ref<Eigen::MatrixXd> out) const {
   const auto& k = interval.keys.keys;
   const Eigen::Index m = length_.rows();
-  // Row 0: linear in the keyframes' rows.
-  out.row(0).setZero();
-  for (int i = 0; i < 4; ++i) out.row(0) += w.c[static_cast<std::size_t>(i)] * keys_[static_cast<std::size_t>(k[static_cast<std::size_t>(i)])].row(0);
-  for (Eigen::Index j = 1; j < m; ++j) {
+  // The linear rows: linear in the keyframes' rows.
+  for (Eigen::Index j = 0; j < linear_rows_; ++j) {
+    out.row(j).setZero();
+    for (int i = 0; i < 4; ++i) out.row(j) += w.c[static_cast<std::size_t>(i)] * keys_[static_cast<std::size_t>(k[static_cast<std::size_t>(i)])].row(j);
+  }
+  for (Eigen::Index j = linear_rows_; j < m; ++j) {
     double length = 0.0;
     for (int i = 0; i < 4; ++i) length += w.c[static_cast<std::size_t>(i)] * length_(j, k[static_cast<std::size_t>(i)]);
     if (dimension_ == 2) {

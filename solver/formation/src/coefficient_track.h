@@ -10,8 +10,10 @@
 
 namespace throng::formation {
 
-/// Coefficient rows of every keyframe (K matrices #items by d, d = 2 or 3, in the keyframes' aligned bases).
-/// Row 0 (the barycentre direction e1) is interpolated linearly with the spline weights. Rows j ≥ 1:
+/// Coefficient rows of every keyframe (K matrices #items by d, d = 2 or 3, in the keyframes' aligned bases; or,
+/// for the polar baseline, the items' positions about the group's barycentre). The first `linear_rows` rows
+/// (the spectral method: 1, the barycentre direction e1; the polar baseline: 0) are interpolated linearly with
+/// the spline weights. The other rows j:
 ///   2-D: length r and angle θ, each a spline of the keyframes' values; angles are unwrapped so that consecutive
 ///        keyframes differ by at most π (the shorter way round, Eq. 4);
 ///   3-D: length a spline; direction u(t) = Rot(u_{n+1}→u_{n+2})^{c2} Rot(u_n→u_{n+1})^{c1+c2} Rot(u_{n−1}→u_n)^{−c−1} u_n
@@ -22,7 +24,7 @@ namespace throng::formation {
 class CoefficientTrack {
  public:
   CoefficientTrack() = default;
-  explicit CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys);
+  explicit CoefficientTrack(const std::vector<Eigen::MatrixXd>& keys, int linear_rows = 1);
 
   /// Per-interval data (the 3-D rotations between the control keyframes); cheap in 2-D.
   struct Interval {
@@ -39,7 +41,8 @@ class CoefficientTrack {
 
  private:
   int dimension_ = 2;
-  std::vector<Eigen::MatrixXd> keys_;  // as given (row 0 is used)
+  int linear_rows_ = 1;
+  std::vector<Eigen::MatrixXd> keys_;  // as given (the linear rows are used)
   Eigen::MatrixXd length_;             // #items by K
   Eigen::MatrixXd angle_;              // 2-D: #items by K, unwrapped
   std::vector<Eigen::MatrixXd> direction_;  // 3-D: K of #items by 3, unit

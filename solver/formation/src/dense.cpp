@@ -3,6 +3,9 @@
 #include <throng/core/errors.h>
 
 #include <omp.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cassert>
@@ -35,21 +38,18 @@ constexpr Eigen::Index block_columns = 128;
 // barriers, worse when the machine is shared).
 constexpr double parallel_work = 4e6;
 
-// While alive, BLAS/LAPACK calls made by this thread run single-threaded (OpenBLAS's OpenMP build reads the
-// calling thread's omp_get_max_threads(); inside an active parallel region it is single-threaded already).
+// While alive, BLAS/LAPACK calls made by this thread run single-threaded. OpenBLAS's OpenMP build (Debian's
+// libopenblas0-openmp, which scripts/install-deps selects) sizes each call by the calling thread's
+// omp_get_max_threads(); that setting is per thread (a TBB worker gets its own on first use), so setting it
+// here touches no other thread. No OpenMP parallel region is opened: OpenMP is only OpenBLAS's thread knob.
 class SequentialBlas {
  public:
-  SequentialBlas() : active_(!omp_in_parallel()), saved_(omp_get_max_threads()) {
-    if (active_) omp_set_num_threads(1);
-  }
-  ~SequentialBlas() {
-    if (active_) omp_set_num_threads(saved_);
-  }
+  SequentialBlas() : saved_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~SequentialBlas() { omp_set_num_threads(saved_); }
   SequentialBlas(const SequentialBlas&) = delete;
   SequentialBlas& operator=(const SequentialBlas&) = delete;
 
  private:
-  bool active_;
   int saved_;
 };
 
@@ -164,21 +164,27 @@ int determinant_sign(const Eigen::Ref<const Eigen::MatrixXd>& a) {
 
 void for_each(std::size_t n, double work_per_item, const std::function<void(std::size_t)>& body) {
   if (n == 0) return;
-  if (n == 1 || omp_in_parallel() || static_cast<double>(n) * work_per_item < parallel_work) {
+  if (n == 1 || static_cast<double>(n) * work_per_item < parallel_work) {
     for (std::size_t i = 0; i < n; ++i) body(i);
     return;
   }
-  // Exceptions must not leave an OpenMP region: keep the one of the lowest index and rethrow it afterwards.
+  // One task per index (items are few and uneven: a hierarchy's groups, column blocks, keyframes), on TBB's
+  // threads like every other loop of the product (nested loops share them). TBB passes on whichever exception
+  // reached it first, which depends on the schedule: keep each index's and rethrow the lowest one's, so the
+  // error is the same whatever the thread count.
   std::vector<std::exception_ptr> errors(n);
-  const long count = static_cast<long>(n);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long i = 0; i < count; ++i) {
-    try {
-      body(static_cast<std::size_t>(i));
-    } catch (...) {
-      errors[static_cast<std::size_t>(i)] = std::current_exception();
-    }
-  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, n, 1),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          try {
+            body(i);
+          } catch (...) {
+            errors[i] = std::current_exception();
+          }
+        }
+      },
+      tbb::simple_partitioner());
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 }

@@ -6,8 +6,8 @@
 // results differ in the last bits from one thread count to another (measured: OpenBLAS and Eigen both do). Here
 // every BLAS/LAPACK call runs single-threaded, and parallelism comes from splitting the work into pieces whose
 // boundaries do not depend on the thread count (fixed column blocks of a product, independent problems),
-// spread over OpenMP threads. OpenBLAS's OpenMP build runs single-threaded inside an active parallel region and
-// otherwise uses omp_get_max_threads() threads, so calls made outside a region are wrapped to see one thread.
+// spread over TBB's threads (the --threads limit, core/parallel.h). OpenBLAS's OpenMP build sizes a call by the
+// calling thread's omp_get_max_threads(), so each call is made with that set to 1 on its thread.
 #pragma once
 
 #include <Eigen/Core>
@@ -35,10 +35,10 @@ void hermitian_eigen(Eigen::MatrixXcd& a, Eigen::VectorXd& values);
 /// 0 if LU finds an exactly zero pivot.
 [[nodiscard]] int determinant_sign(const Eigen::Ref<const Eigen::MatrixXd>& a);
 
-/// Calls body(i) for every i in [0, n) on OpenMP threads (one call per i, dynamic schedule); nested calls, and
-/// loops whose total work n · work_per_item (about floating-point operations) is too small to pay for waking
-/// threads, run sequentially. The body must only write state owned by i; BLAS/LAPACK calls inside run
-/// single-threaded.
+/// Calls body(i) for every i in [0, n) on TBB's threads (one task per i); loops whose total work
+/// n · work_per_item (about floating-point operations) is too small to pay for waking threads run sequentially.
+/// Nested calls share the same threads. The body must only write state owned by i; BLAS/LAPACK calls inside run
+/// single-threaded. If bodies throw, the exception of the lowest i is rethrown after every body has run.
 void for_each(std::size_t n, double work_per_item, const std::function<void(std::size_t)>& body);
 
 }  // namespace throng::formation::dense

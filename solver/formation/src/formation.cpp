@@ -1,11 +1,12 @@
-// Entry point: checks, matching, the tree of groups, one SpectralGroup per group, evaluation from the root down,
-// collision avoidance, the CrowdMotion.
+// Entry point: checks, matching, the tree of groups, one group interpolation per group (SpectralGroup, or a
+// PositionGroup for the baselines), evaluation from the root down, collision avoidance, the CrowdMotion.
 #include <throng/formation/formation.h>
 
 #include "collision.h"
 #include "dense.h"
 #include "hierarchy.h"
 #include "matching.h"
+#include "position_group.h"
 #include "spectral_group.h"
 #include "spline.h"
 
@@ -36,6 +37,8 @@ void check_options(const Options& o) {
           "formation.isotropy_tolerance: " + std::to_string(o.isotropy_tolerance) + " must be in [0, 1)");
   require(o.auto_group_size == 0 || o.auto_group_size >= 2,
           "formation.auto_group_size: " + std::to_string(o.auto_group_size) + " must be 0 (flat) or at least 2");
+  require(o.auto_cluster_size >= 2,
+          "formation.auto_cluster_size: " + std::to_string(o.auto_cluster_size) + " must be at least 2 (items per group)");
   require(std::isfinite(o.radius_m) && o.radius_m >= 0, "formation.radius: " + std::to_string(o.radius_m) + " must be ≥ 0 (metres)");
   const CollisionOptions& c = o.collision;
   if (!c.enabled) return;
@@ -148,16 +151,19 @@ Adjacency summed_graph(const Problem& p, const std::vector<std::vector<Individua
   const int n = static_cast<int>(p.keyframes[0].positions.rows());
   std::vector<std::string> names(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) names[static_cast<std::size_t>(i)] = individual_name(p, i);
-  Adjacency sum;
-  sum.count = n;
-  for (std::size_t k = 0; k < p.keyframes.size(); ++k) {
+  // The keyframes' graphs in parallel, summed in keyframe order.
+  std::vector<Adjacency> graphs(p.keyframes.size());
+  dense::for_each(graphs.size(), 2000.0 * n, [&](std::size_t k) {
     const std::string what = "formation keyframe " + std::to_string(k);
-    Adjacency g = delaunay_adjacency(p.keyframes[k].positions, at(p.keyframes[k].where) + what, names);
+    graphs[k] = delaunay_adjacency(p.keyframes[k].positions, at(p.keyframes[k].where) + what, names);
     std::vector<EdgeEdit> plain;
     for (const IndividualEdit& e : edits[k]) plain.push_back(e.edit);
-    apply_edits(g, p.keyframes[k].positions, plain, what, names);
+    apply_edits(graphs[k], p.keyframes[k].positions, plain, what, names);
+  });
+  Adjacency sum;
+  sum.count = n;
+  for (const Adjacency& g : graphs)
     for (const auto& [edge, w] : g.weights) sum.weights[edge] += w;
-  }
   return sum;
 }
 
@@ -221,7 +227,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
   if (problem.hierarchy) {
     result.hierarchy = *problem.hierarchy;
   } else if (options.auto_group_size > 0 && n > options.auto_group_size) {
-    result.hierarchy = cluster_hierarchy(summed_graph(problem, edits), options.auto_group_size);
+    result.hierarchy = cluster_hierarchy(summed_graph(problem, edits), std::min(options.auto_group_size, options.auto_cluster_size));
   } else {
     result.hierarchy = root_of_everyone(n);
   }
@@ -244,6 +250,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     gk.what = node_count == 1 ? "formation" : "formation " + node.name;
     for (int m : node.members) gk.item_names.push_back(individual_name(problem, m));
     for (int c : node.children) gk.item_names.push_back("sub" + tree.nodes[static_cast<std::size_t>(c)].name);
+    for (const Keyframe& k : problem.keyframes) gk.sharp.push_back(k.sharp);
     for (std::size_t k = 0; k < k_count; ++k) {
       const Eigen::MatrixXd& all = problem.keyframes[k].positions;
       Eigen::MatrixXd items(node.item_count(), d);
@@ -279,11 +286,17 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
   }
 
   // Analysis of every group (independent: in parallel).
-  std::vector<std::unique_ptr<SpectralGroup>> spectral(node_count);
-  double analysis_work = 0.0;  // eigenproblems: about 30 m³ per keyframe
-  for (const TreeNode& node : tree.nodes) analysis_work += 30.0 * std::pow(node.item_count(), 3) * static_cast<double>(k_count);
-  dense::for_each(node_count, analysis_work / static_cast<double>(node_count),
-                  [&](std::size_t g) { spectral[g] = std::make_unique<SpectralGroup>(groups[g], options); });
+  const bool spectral_method = options.interpolation == Interpolation::spectral;
+  std::vector<std::unique_ptr<GroupInterpolation>> interpolation(node_count);
+  double analysis_work = 0.0;  // eigenproblems: about 30 m³ per keyframe; the baselines' graphs about 2000 m
+  for (const TreeNode& node : tree.nodes) {
+    const double m = node.item_count();
+    analysis_work += (spectral_method ? 30.0 * m * m * m : 2000.0 * m) * static_cast<double>(k_count);
+  }
+  dense::for_each(node_count, analysis_work / static_cast<double>(node_count), [&](std::size_t g) {
+    if (spectral_method) interpolation[g] = std::make_unique<SpectralGroup>(groups[g], options);
+    else interpolation[g] = std::make_unique<PositionGroup>(groups[g], options);
+  });
   progress.update(1.0, "formation analysis");
 
   // The individual-level edges of every keyframe's graphs (for pictures and the output file).
@@ -292,7 +305,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     for (std::size_t g = 0; g < node_count; ++g) {
       const TreeNode& node = tree.nodes[g];
       const int members = static_cast<int>(node.members.size());
-      for (const auto& [edge, weight] : spectral[g]->graph(static_cast<int>(k)).weights) {
+      for (const auto& [edge, weight] : interpolation[g]->graph(static_cast<int>(k)).weights) {
         if (edge.first >= members || edge.second >= members) continue;
         const int a = node.members[static_cast<std::size_t>(edge.first)];
         const int b = node.members[static_cast<std::size_t>(edge.second)];
@@ -311,7 +324,7 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
   std::vector<Eigen::MatrixXd> anchor_paths(node_count);
   anchor_paths[0].resize(d, static_cast<Eigen::Index>(frames));
   for (std::size_t f = 0; f < frames; ++f) {
-    const ControlKeys keys = control_keys(timeline.segment[f], static_cast<int>(k_count));
+    const ControlKeys keys = groups[0].controls(timeline.segment[f]);
     const SplineWeights w = catmull_rom_weights(timeline.local[f], options.tension);
     Eigen::VectorXd a = Eigen::VectorXd::Zero(d);
     for (int i = 0; i < 4; ++i) a += w.c[static_cast<std::size_t>(i)] * groups[0].anchors[static_cast<std::size_t>(keys.keys[static_cast<std::size_t>(i)])];
@@ -327,12 +340,12 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     double level_work = 0.0;  // products of about 8 m² d flops per frame, plus the coefficients
     for (std::size_t g : level) {
       const double m = tree.nodes[g].item_count();
-      level_work += (8.0 * m * m * d + 100.0 * m) * static_cast<double>(frames);
+      level_work += ((spectral_method ? 8.0 * m * m * d : 0.0) + 100.0 * m) * static_cast<double>(frames);
     }
     dense::for_each(level.size(), level_work / static_cast<double>(std::max<std::size_t>(level.size(), 1)), [&](std::size_t li) {
       const std::size_t g = level[li];
       const TreeNode& node = tree.nodes[g];
-      const Eigen::MatrixXd items = spectral[g]->evaluate(timeline, anchor_paths[g]);
+      const Eigen::MatrixXd items = interpolation[g]->evaluate(timeline, anchor_paths[g]);
       for (std::size_t m = 0; m < node.members.size(); ++m) {
         const auto individual = static_cast<std::size_t>(node.members[m]);
         for (std::size_t f = 0; f < frames; ++f) {

@@ -1,6 +1,7 @@
 #include "hierarchy.h"
 
 #include "dense.h"
+#include "fiedler.h"
 
 #include <throng/core/errors.h>
 
@@ -53,31 +54,8 @@ void flatten(const Group& group, int parent, int depth, const std::string& path,
   }
 }
 
-// Fiedler vector of the subgraph induced on `subset` (the eigenvector of the second smallest Laplacian eigenvalue),
-// sign fixed so its largest-magnitude entry is positive.
-Eigen::VectorXd fiedler_vector(const Adjacency& graph, const std::vector<int>& subset) {
-  const auto m = static_cast<Eigen::Index>(subset.size());
-  std::vector<int> local(static_cast<std::size_t>(graph.count), -1);
-  for (Eigen::Index i = 0; i < m; ++i) local[static_cast<std::size_t>(subset[static_cast<std::size_t>(i)])] = static_cast<int>(i);
-  Eigen::MatrixXd l = Eigen::MatrixXd::Zero(m, m);
-  for (const auto& [edge, weight] : graph.weights) {
-    const int a = local[static_cast<std::size_t>(edge.first)], b = local[static_cast<std::size_t>(edge.second)];
-    if (a < 0 || b < 0) continue;
-    l(a, b) -= weight;
-    l(b, a) -= weight;
-    l(a, a) += weight;
-    l(b, b) += weight;
-  }
-  Eigen::VectorXd values;
-  dense::symmetric_eigen(l, values);
-  Eigen::VectorXd f = l.col(1);
-  Eigen::Index largest = 0;
-  f.cwiseAbs().maxCoeff(&largest);
-  if (f(largest) < 0) f = -f;
-  return f;
-}
-
-// Splits `subset` into `parts` groups of proportional sizes by recursive Fiedler bisection.
+// Splits `subset` into `parts` groups of proportional sizes by recursive Fiedler bisection; the two halves
+// are split in parallel (independent: the same result whatever the thread count), `out` in a fixed order.
 void split(const Adjacency& graph, std::vector<int> subset, int parts, std::vector<std::vector<int>>& out) {
   if (parts <= 1 || subset.size() <= 1) {
     out.push_back(std::move(subset));
@@ -95,8 +73,13 @@ void split(const Adjacency& graph, std::vector<int> subset, int parts, std::vect
   for (std::size_t i = 0; i < order.size(); ++i) (i < cut ? left : right).push_back(subset[order[i]]);
   std::sort(left.begin(), left.end());
   std::sort(right.begin(), right.end());
-  split(graph, std::move(left), left_parts, out);
-  split(graph, std::move(right), parts - left_parts, out);
+  std::vector<int>* halves[2] = {&left, &right};
+  const int half_parts[2] = {left_parts, parts - left_parts};
+  std::vector<std::vector<int>> pieces[2];
+  const double work = 1e4 * static_cast<double>(subset.size());  // sparse Lanczos: products of ~1e4 flops per item
+  dense::for_each(2, work, [&](std::size_t h) { split(graph, std::move(*halves[h]), half_parts[h], pieces[h]); });
+  for (auto& piece : pieces)
+    for (auto& group : piece) out.push_back(std::move(group));
 }
 
 Group build(const Adjacency& graph, std::vector<int> individuals, int group_size, const std::string& name) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <optional>
+#include <set>
 
 namespace throng::formation {
 namespace {
@@ -20,21 +21,19 @@ Eigen::VectorXd mean_row(const Eigen::MatrixXd& points) { return points.colwise(
 SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& options)
     : items_(static_cast<int>(keyframes.positions.front().rows())),
       dimension_(static_cast<int>(keyframes.positions.front().cols())),
-      tension_(options.tension) {
+      tension_(options.tension),
+      product_(options.keyframe_product),
+      sharp_(keyframes.sharp) {
   const std::size_t k_count = keyframes.positions.size();
   assert(k_count >= 2 && keyframes.anchors.size() == k_count && keyframes.edits.size() == k_count);
+  assert(sharp_.empty() || sharp_.size() == k_count);
 
   // Graphs and eigenbases, keyframes in parallel (§3.1).
   graphs_.resize(k_count);
   std::vector<Eigenbasis> eigenbases(k_count);
   const double m = items_;
   dense::for_each(k_count, 10.0 * m * m * m + 2000.0 * m, [&](std::size_t k) {
-    const std::string what = keyframes.what + " keyframe " + std::to_string(k);
-    const std::string place = k < keyframes.places.size() ? keyframes.places[k] : std::string();
-    const std::string placed = place.empty() ? what : place + ": " + what;  // edits name their own place
-    Adjacency graph = delaunay_adjacency(keyframes.positions[k], placed, keyframes.item_names);
-    apply_edits(graph, keyframes.positions[k], keyframes.edits[k], what, keyframes.item_names);
-    require_connected(graph, placed, keyframes.item_names);
+    Adjacency graph = keyframe_graph(keyframes, k);
     eigenbases[k] = laplacian_eigenbasis(laplacian(graph));
     graphs_[k] = std::move(graph);
   });
@@ -57,10 +56,12 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
   coefficients_ = CoefficientTrack(coefficients);
   orientation_ = OrientationTrack(std::move(rotations));
 
-  // The rotations between consecutive keyframes, G_{k,k+1} = M_kᵀ M_{k+1}, that the intervals' Eq. 5 products
-  // use (cumulative form, see plan_interval), decomposed in parallel.
-  std::vector<std::pair<int, int>> pairs;
-  for (int k = 0; k + 1 < static_cast<int>(k_count); ++k) pairs.emplace_back(k, k + 1);
+  // The rotations the intervals' Eq. 5 products use (between consecutive keyframes in the cumulative form; from
+  // keyframe n−1 to n, n+1 and n+2 in the paper's), each decomposed once, in parallel.
+  std::set<std::pair<int, int>> needed;
+  for (int segment = 0; segment + 1 < static_cast<int>(k_count); ++segment)
+    for (const Term& term : eq5(segment).terms) needed.insert(term.rotation);
+  const std::vector<std::pair<int, int>> pairs(needed.begin(), needed.end());
   std::vector<std::optional<RotationPower>> decomposed(pairs.size());
   dense::for_each(pairs.size(), 30.0 * m * m * m, [&](std::size_t i) {
     const Eigen::MatrixXd g = dense::multiply(bases_[static_cast<std::size_t>(pairs[i].first)], true,
@@ -70,33 +71,61 @@ SpectralGroup::SpectralGroup(const GroupKeyframes& keyframes, const Options& opt
   for (std::size_t i = 0; i < pairs.size(); ++i) rotations_.emplace(pairs[i], std::move(*decomposed[i]));
 }
 
-SpectralGroup::IntervalPlan SpectralGroup::plan_interval(int segment) const {
-  // Eq. 5 in cumulative form: with R0, R1, R2 the rotations n−1→n, n→n+1, n+1→n+2 and the spline weights
-  // c−1..c2 (summing to 1), M(t) = R2^{c2} R1^{c1+c2} R0^{c0+c1+c2} M_{n−1}, the rotational analogue of
-  // p(t) = p_{n−1} + (c0+c1+c2)(p_n − p_{n−1}) + (c1+c2)(p_{n+1} − p_n) + c2(p_{n+2} − p_{n+1}). Written in
-  // the keyframes' own bases (R0^{c0+c1+c2} M_{n−1} = R0^{−c−1} M_n, and so on):
-  //   M(t) = M_{n+1} · G_{n+1,n+2}^{c2} · G_{n,n+1}^{−(c−1+c0)} · G_{n−1,n}^{−c−1}.
-  // It equals the paper's (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1} when the rotations commute (always for two
-  // keyframes), but every power is of a rotation between CONSECUTIVE keyframes: the paper's powers of products
-  // take the principal logarithm of R1R0 and R2R1R0, which swings the basis the other way round once the
-  // rotations add up past π in a plane, and for rotations that do not commute leaves the path between M_n and
-  // M_{n+1} even at τ = 0. This is also the form of the 2-D coefficient and orientation splines (angles
-  // unwrapped between consecutive keyframes).
-  IntervalPlan plan;
-  plan.keys = control_keys(segment, keyframe_count());
-  const auto& k = plan.keys.keys;
-  auto add = [&](int from, int to, double sign, std::vector<int> weights) {
-    if (from == to) return;  // a duplicated endpoint: the identity
-    const RotationPower& rotation = rotations_.at({from, to});
-    if (rotation.is_identity()) return;
-    plan.factors.push_back(Factor{&rotation, sign, std::move(weights)});
+SpectralGroup::Eq5 SpectralGroup::eq5(int segment) const {
+  Eq5 out;
+  out.keys = control_keys(segment, keyframe_count(), sharp_);
+  const auto& k = out.keys.keys;
+  auto add = [&](int a, int b, double sign, std::vector<int> weights) {
+    if (a == b) return;
+    if (!out.terms.empty() && out.terms.back().rotation == std::make_pair(a, b) && out.terms.back().sign == sign) {
+      // The same rotation twice in a row (the paper's form at the last interval: n+2 duplicated as n+1): one
+      // power with the exponents summed.
+      out.terms.back().weights.insert(out.terms.back().weights.end(), weights.begin(), weights.end());
+      return;
+    }
+    out.terms.push_back(Term{{a, b}, sign, std::move(weights)});
   };
-  add(k[0], k[1], -1.0, {0});     // G_{n−1,n}^{−c−1}
-  add(k[1], k[2], -1.0, {0, 1});  // G_{n,n+1}^{−(c−1+c0)}
-  add(k[2], k[3], 1.0, {3});      // G_{n+1,n+2}^{c2}
+  if (product_ == KeyframeProduct::cumulative) {
+    // With R0, R1, R2 the rotations n−1→n, n→n+1, n+1→n+2 and the spline weights c−1..c2 (summing to 1),
+    // M(t) = R2^{c2} R1^{c1+c2} R0^{c0+c1+c2} M_{n−1}, the rotational analogue of
+    // p(t) = p_{n−1} + (c0+c1+c2)(p_n − p_{n−1}) + (c1+c2)(p_{n+1} − p_n) + c2(p_{n+2} − p_{n+1}). Written in
+    // the keyframes' own bases (R0^{c0+c1+c2} M_{n−1} = R0^{−c−1} M_n, and so on):
+    //   M(t) = M_{n+1} · G_{n+1,n+2}^{c2} · G_{n,n+1}^{−(c−1+c0)} · G_{n−1,n}^{−c−1}.
+    // It equals the paper's (R2R1R0)^{c2} (R1R0)^{c1} R0^{c0} M_{n−1} when the rotations commute (always for two
+    // keyframes), but every power is of a rotation between CONSECUTIVE keyframes: the paper's powers of products
+    // take the principal logarithm of R1R0 and R2R1R0, which swings the basis the other way round once the
+    // rotations add up past π in a plane, and for rotations that do not commute leaves the path between M_n and
+    // M_{n+1} even at τ = 0. This is also the form of the 2-D coefficient and orientation splines (angles
+    // unwrapped between consecutive keyframes).
+    out.base = k[2];
+    add(k[0], k[1], -1.0, {0});     // G_{n−1,n}^{−c−1}
+    add(k[1], k[2], -1.0, {0, 1});  // G_{n,n+1}^{−(c−1+c0)}
+    add(k[2], k[3], 1.0, {3});      // G_{n+1,n+2}^{c2}
+  } else {
+    // Eq. 5 as printed, M(t) = (R2R1R0)^{c2} (R1R0)^{c1} (R0)^{c0} M_{n−1}. R0 = M_n M_{n−1}ᵀ, R1R0 =
+    // M_{n+1} M_{n−1}ᵀ, R2R1R0 = M_{n+2} M_{n−1}ᵀ, and (M_b M_aᵀ)^c = M_a G_{a,b}^c M_aᵀ, so
+    //   M(t) = M_{n−1} · G_{n−1,n+2}^{c2} · G_{n−1,n+1}^{c1} · G_{n−1,n}^{c0}.
+    // Every G_{a,b} has det +1 (a product of the consecutive ones, each made +1 by the alignment).
+    out.base = k[0];
+    add(k[0], k[1], 1.0, {1});  // G_{n−1,n}^{c0}
+    add(k[0], k[2], 1.0, {2});  // G_{n−1,n+1}^{c1}
+    add(k[0], k[3], 1.0, {3});  // G_{n−1,n+2}^{c2}
+  }
+  return out;
+}
+
+SpectralGroup::IntervalPlan SpectralGroup::plan_interval(int segment) const {
+  const Eq5 equation = eq5(segment);
+  IntervalPlan plan;
+  plan.keys = equation.keys;
+  for (const Term& term : equation.terms) {
+    const RotationPower& rotation = rotations_.at(term.rotation);
+    if (rotation.is_identity()) continue;
+    plan.factors.push_back(Factor{&rotation, term.sign, term.weights});
+  }
   for (std::size_t i = 1; i < plan.factors.size(); ++i)
     plan.links.push_back(dense::multiply(plan.factors[i].rotation->basis(), true, plan.factors[i - 1].rotation->basis()));
-  const Eigen::MatrixXd& base = bases_[static_cast<std::size_t>(k[2])];
+  const Eigen::MatrixXd& base = bases_[static_cast<std::size_t>(equation.base)];
   plan.final = plan.factors.empty() ? base : dense::multiply(base, false, plan.factors.back().rotation->basis());
   plan.coefficients = coefficients_.interval(plan.keys);
   return plan;

@@ -4,6 +4,7 @@
 
 #include "adjacency.h"
 #include "coefficient_track.h"
+#include "group_keyframes.h"
 #include "orientation.h"
 #include "rotation_power.h"
 #include "spline.h"
@@ -19,22 +20,8 @@
 
 namespace throng::formation {
 
-/// One group's keyframes.
-///   positions   K matrices #items by d (d = 2 or 3): the items (individuals, or subgroup barycentres)
-///   anchors     K vectors of d: the group's reference point (its barycentre over all its individuals)
-///   edits       K lists of graph edits on item indices
-///   what        the group in messages ("formation", "group 'brass'"); item_names: "individual 7", ...
-///   places      K: where each keyframe was given (Keyframe::where), in front of messages about its graph
-struct GroupKeyframes {
-  std::vector<Eigen::MatrixXd> positions;
-  std::vector<Eigen::VectorXd> anchors;
-  std::vector<std::vector<EdgeEdit>> edits;
-  std::string what;
-  std::vector<std::string> item_names;
-  std::vector<std::string> places;
-};
-
-class SpectralGroup {
+/// The spectral method (Interpolation::spectral).
+class SpectralGroup final : public GroupInterpolation {
  public:
   /// Analysis: graphs, eigenbases, alignment, rotations, coefficient and orientation tracks. Throws InputError /
   /// ConfigError for bad graphs and edits (see formation.h).
@@ -44,16 +31,13 @@ class SpectralGroup {
   [[nodiscard]] int dimension() const noexcept { return dimension_; }
   [[nodiscard]] int keyframe_count() const noexcept { return static_cast<int>(bases_.size()); }
 
-  /// Item positions at every frame of `timeline`, given the anchor's path (d by #frames):
-  /// returns #items·d by #frames, column f = frame f's items, item-major (item j's coordinates at rows j·d...).
-  [[nodiscard]] Eigen::MatrixXd evaluate(const Timeline& timeline, const Eigen::MatrixXd& anchor_path) const;
+  [[nodiscard]] Eigen::MatrixXd evaluate(const Timeline& timeline, const Eigen::MatrixXd& anchor_path) const override;
 
   /// M(t) (#items by #items) in interval `segment` at parameter t ∈ [0, 1]: the interpolated eigenbasis.
   [[nodiscard]] Eigen::MatrixXd eigenbasis_at(int segment, double t) const;
   /// The aligned eigenbasis of keyframe k (M_k).
   [[nodiscard]] const Eigen::MatrixXd& aligned_basis(int k) const { return bases_[static_cast<std::size_t>(k)]; }
-  /// The graph of keyframe k after edits.
-  [[nodiscard]] const Adjacency& graph(int k) const { return graphs_[static_cast<std::size_t>(k)]; }
+  [[nodiscard]] const Adjacency& graph(int k) const override { return graphs_[static_cast<std::size_t>(k)]; }
 
  private:
   // The product chain of one interval: x = final · U_last(c) · links... · U_1(c) · first_transposedᵀ · C.
@@ -66,7 +50,7 @@ class SpectralGroup {
     ControlKeys keys;
     std::vector<Factor> factors;
     std::vector<Eigen::MatrixXd> links;  // links[i] = Z_{i+1}ᵀ Z_i, for i + 1 < factors.size()
-    Eigen::MatrixXd final;               // M_{n+1} Z_last, or M_{n+1} without factors
+    Eigen::MatrixXd final;               // M_base Z_last, or M_base without factors
     CoefficientTrack::Interval coefficients;
   };
   [[nodiscard]] IntervalPlan plan_interval(int segment) const;
@@ -74,12 +58,29 @@ class SpectralGroup {
   [[nodiscard]] Eigen::MatrixXd apply_chain(const IntervalPlan& plan, const Eigen::MatrixXd& c,
                                             const std::vector<SplineWeights>& weights, int group) const;
 
+  // Interval `segment`'s Eq. 5 (Options::keyframe_product): M(t) = M_base · ... · G_{a,b}^{sign · Σ c[weights]}
+  // · ..., the terms listed in the order they apply to the coefficients (rightmost first); a term with a = b
+  // (a duplicated keyframe: the identity) is left out.
+  struct Term {
+    std::pair<int, int> rotation;  // (a, b): G_{a,b} = M_aᵀ M_b
+    double sign = 1.0;
+    std::vector<int> weights;
+  };
+  struct Eq5 {
+    ControlKeys keys;
+    int base = 0;
+    std::vector<Term> terms;
+  };
+  [[nodiscard]] Eq5 eq5(int segment) const;
+
   int items_ = 0;
   int dimension_ = 2;
   double tension_ = 0.5;
+  KeyframeProduct product_ = KeyframeProduct::cumulative;
+  std::vector<bool> sharp_;
   std::vector<Adjacency> graphs_;
   std::vector<Eigen::MatrixXd> bases_;                     // M_k
-  std::map<std::pair<int, int>, RotationPower> rotations_;  // G_{k,k+1} = M_kᵀ M_{k+1}
+  std::map<std::pair<int, int>, RotationPower> rotations_;  // G_{a,b} = M_aᵀ M_b for every pair an interval uses
   CoefficientTrack coefficients_;
   OrientationTrack orientation_;
 };

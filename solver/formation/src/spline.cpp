@@ -16,9 +16,13 @@ SplineWeights catmull_rom_weights(double t, double tension) noexcept {
   return w;
 }
 
-ControlKeys control_keys(int segment, int keyframe_count) noexcept {
+ControlKeys control_keys(int segment, int keyframe_count, const std::vector<bool>& sharp) noexcept {
   assert(segment >= 0 && segment + 1 < keyframe_count);
-  return ControlKeys{{std::max(segment - 1, 0), segment, segment + 1, std::min(segment + 2, keyframe_count - 1)}};
+  assert(sharp.empty() || static_cast<int>(sharp.size()) == keyframe_count);
+  auto is_sharp = [&](int k) { return !sharp.empty() && sharp[static_cast<std::size_t>(k)]; };
+  const int before = is_sharp(segment) ? segment : std::max(segment - 1, 0);
+  const int after = is_sharp(segment + 1) ? segment + 1 : std::min(segment + 2, keyframe_count - 1);
+  return ControlKeys{{before, segment, segment + 1, after}};
 }
 
 Timeline make_timeline(const std::vector<double>& keyframe_times, double frame_rate_hz) {

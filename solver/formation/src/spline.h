@@ -16,11 +16,16 @@ struct SplineWeights {
 [[nodiscard]] SplineWeights catmull_rom_weights(double t, double tension) noexcept;
 
 /// The keyframes n−1, n, n+1, n+2 controlling interval `segment` (= n), with the endpoints duplicated:
-/// keys[0] = max(n−1, 0), keys[3] = min(n+2, K−1).
+/// keys[0] = max(n−1, 0), keys[3] = min(n+2, K−1). A sharp keyframe (`sharp[k]`, empty: none) is duplicated too,
+/// the paper's "when p_n (or p_{n+1}) is ... a point at which the curve is set to be nonsmooth, p_n (or p_{n+1})
+/// is duplicated" (§4.1): keys[0] = n when keyframe n is sharp, keys[3] = n+1 when keyframe n+1 is. The spline
+/// then leaves and reaches the keyframe along the chord of its own interval only (tangent τ(p_{n+1} − p_n)), so
+/// the path turns there with the angle between the two chords, and the intervals beyond its neighbours do not
+/// change.
 struct ControlKeys {
   std::array<int, 4> keys{0, 0, 0, 0};
 };
-[[nodiscard]] ControlKeys control_keys(int segment, int keyframe_count) noexcept;
+[[nodiscard]] ControlKeys control_keys(int segment, int keyframe_count, const std::vector<bool>& sharp = {}) noexcept;
 
 /// Output frames: every keyframe time is a frame; interval k → k+1 gets max(1, round((t_{k+1} − t_k)·rate))
 /// equal steps.

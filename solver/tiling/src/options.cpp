@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace throng::tiling {
 namespace {
@@ -59,6 +60,21 @@ void validate(const Options& o) {
   positive("obstacle_step", o.obstacle_step_m);
   positive("obstacle_step_time", o.obstacle_step_s);
   require(o.chains >= 1, "chains", static_cast<double>(o.chains), "≥ 1");
+  const DensityOptions& d = o.density;
+  non_negative("density.per_m2", d.per_m2);
+  positive("density.area_cell", d.area_cell_m);
+  require(d.tolerance > 0 && d.tolerance < 1, "density.tolerance", d.tolerance, "a fraction in (0, 1)");
+  positive("density.bin", d.bin_s);
+  positive("density.report_window", d.report_window_s);
+  require(d.report_window_s >= d.bin_s, "density.report_window", d.report_window_s, "≥ density.bin");
+  positive("density.projection_speed", d.projection_speed_mps);
+  for (std::size_t z = 0; z < d.zones.size(); ++z) {
+    const DensityZone& zone = d.zones[z];
+    const std::string name = "density.zones[" + std::to_string(z) + "]";
+    require(zone.min.allFinite() && zone.max.allFinite() && zone.max.x() > zone.min.x() && zone.max.y() > zone.min.y(),
+            (name + ".max − min").c_str(), (zone.max - zone.min).minCoeff(), "a box with max > min on x and y");
+    require(zone.per_m2 > 0 && std::isfinite(zone.per_m2), (name + ".per_m2").c_str(), zone.per_m2, "a finite value > 0");
+  }
 }
 
 }  // namespace throng::tiling

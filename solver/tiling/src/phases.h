@@ -8,7 +8,10 @@
 #include "state.h"
 #include "stitcher.h"
 
+#include <cstdint>
 #include <functional>
+#include <memory>
+#include <vector>
 
 namespace throng::tiling {
 
@@ -23,6 +26,11 @@ void anneal(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
 void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng, ChainReport& report,
             const Tick& tick);
 
+/// Density per area after phase 2 (density_control.cpp): correction rounds that drop whole groups of patches
+/// from over-full bins and sample under-full ones again; sets report.density_*.
+void meet_density(TilingState& state, Stitcher& stitcher, const PreferenceModel& preference, Rng& rng,
+                  ChainReport& report, const Tick& tick);
+
 /// Moves a transform by whole periods into the tile on the periodic axes; returns the periods subtracted.
 std::array<int, 3> canonicalise(const Problem& problem, Transform& transform);
 
@@ -31,8 +39,18 @@ struct ChainResult {
   ChainReport report;
 };
 
-/// One chain: keyframes, phase 1, phase 2, from Rng(derive_seed(seed, chain)).
+/// One chain: keyframes, phase 1, phase 2, density rounds, from Rng(derive_seed(seed, chain)).
 [[nodiscard]] ChainResult run_chain(const Problem& problem, const std::vector<Keyframe>& keyframes, std::size_t chain,
                                     const Tick& tick);
+
+/// One chain of a window of a windowed run (windowed.h): from the carried instances, phase 1, phase 2, density
+/// rounds, drawing from Rng(seed). The state is returned as it ends; report.characters, .instances, .dangling
+/// and .mean_preference_cost describe it.
+struct WindowChain {
+  std::unique_ptr<TilingState> state;
+  ChainReport report;
+};
+[[nodiscard]] WindowChain run_window_chain(const Problem& problem, std::vector<LiveInstance> carried, std::size_t chain,
+                                           std::uint64_t seed, const Tick& tick);
 
 }  // namespace throng::tiling

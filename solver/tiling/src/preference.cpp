@@ -84,10 +84,10 @@ PreferenceModel::PreferenceModel(const Problem& problem) : problem_(problem) {
     for (int b = 0; b < bins; ++b) angle_.cumulative.push_back(std::exp(-direction_cost(pref, angle_.lo + (b + 0.5) * angle_.width)));
     normalise(angle_.cumulative);
   }
-  time_.lo = region.t0;
+  time_.lo = problem.sample_t0;
   if (pref.time) {
-    const int bins = std::max(1, static_cast<int>(std::ceil((region.t1 - region.t0) / 0.05)));
-    time_.width = (region.t1 - region.t0) / bins;
+    const int bins = std::max(1, static_cast<int>(std::ceil((problem.sample_t1 - problem.sample_t0) / 0.05)));
+    time_.width = (problem.sample_t1 - problem.sample_t0) / bins;
     for (int b = 0; b < bins; ++b) time_.cumulative.push_back(std::exp(-time_cost(pref, time_.lo + (b + 0.5) * time_.width)));
     normalise(time_.cumulative);
   }
@@ -115,7 +115,7 @@ Transform PreferenceModel::sample_transform(Rng& rng) const {
     t.translation = {region.min.x() + (i + rng.uniform()) * cell_x_, region.min.y() + (j + rng.uniform()) * cell_y_};
   }
   t.angle = angle_.draw(rng, std::numbers::pi);
-  t.time_shift = time_.draw(rng, region.t1);
+  t.time_shift = time_.draw(rng, problem_.sample_t1);
   return t;
 }
 

@@ -3,8 +3,9 @@
 //
 // F factorises over position, direction, time and label, so phase 1 draws each factor on its own: the type from
 // preference × exp(−f4(label) / σ4) over the usable types; the centroid from F1 over the region (a 0.1 m table,
-// uniform within a cell); the direction from F2 (a 1° table); the middle time from F3 over [t0, t1] (a 0.05 s
-// table). Absent terms are uniform. Tables are cumulative and searched by bisection: a draw costs O(log n).
+// uniform within a cell); the direction from F2 (a 1° table); the middle time from F3 over the problem's sample
+// span (the region's [t0, t1], or a window's: problem.h; a 0.05 s table). Absent terms are uniform. Tables are
+// cumulative and searched by bisection: a draw costs O(log n).
 #pragma once
 
 #include <throng/core/random.h>

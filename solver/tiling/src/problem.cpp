@@ -5,19 +5,16 @@
 #include "viability.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace throng::tiling {
 
-Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options& opts)
-    : library(lib), environment(env), options(opts), region(*env.scene.region) {
-  const Eigen::Vector3d p = tiling::periods(region);
-  periods.p = {p.x(), p.y(), p.z()};
-
+PatchPrecompute::PatchPrecompute(const PatchLibrary& library, const DeformationOptions& options) {
   // Deformation systems, one per type (independent: built in parallel, each the same whatever the threads).
   std::vector<std::optional<PatchSystem>> built(library.types.size());
   parallel_for(library.types.size(), 1, [&](std::size_t a, std::size_t b) {
-    for (std::size_t k = a; k < b; ++k) built[k].emplace(library.types[k], options.deformation);
+    for (std::size_t k = a; k < b; ++k) built[k].emplace(library.types[k], options);
   });
   systems.reserve(built.size());
   for (auto& s : built) systems.push_back(std::move(*s));
@@ -39,9 +36,33 @@ Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options&
   }
   max_extent_m = max_extent_of(library);
   max_half_duration_s = max_half_duration_of(library);
+}
+
+Problem::Problem(const PatchLibrary& lib, const Environment& env, const Options& opts)
+    : Problem(std::make_shared<const PatchPrecompute>(lib, opts.deformation), lib, env, opts,
+              TimeWindow{env.scene.region->t0, env.scene.region->t1, -std::numeric_limits<double>::infinity(),
+                         env.scene.region->t0, env.scene.region->t1}) {}
+
+Problem::Problem(std::shared_ptr<const PatchPrecompute> shared, const PatchLibrary& lib, const Environment& env,
+                 const Options& opts, const TimeWindow& span)
+    : precompute(std::move(shared)), library(lib), environment(env), options(opts), region(*env.scene.region),
+      index_region(region), systems(precompute->systems), usable(precompute->usable),
+      usable_types(precompute->usable_types), clear_pairs(precompute->clear_pairs),
+      max_extent_m(precompute->max_extent_m), max_half_duration_s(precompute->max_half_duration_s),
+      sample_t0(span.sample_t0), sample_t1(span.sample_t1), freeze(span.freeze), window(span) {
+  const Eigen::Vector3d p = tiling::periods(region);
+  periods.p = {p.x(), p.y(), p.z()};
+  if (std::isfinite(freeze)) index_region.t0 = freeze;
+  if (std::isfinite(freeze)) {
+    const double bin = options.density.bin_s;
+    const double first = span.horizon_t0 + std::floor((freeze - span.horizon_t0) / bin) * bin;
+    presence_span = {first, span.horizon_t1, freeze, span.horizon_t1};
+  } else {
+    presence_span = {span.horizon_t0, span.horizon_t1, span.horizon_t0, span.horizon_t1};
+  }
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
   for (const Obstacle& o : environment.scene.obstacles) {
-    obstacle_bounds.push_back(bounds_over(o, region.t0 - margin_s, region.t1 + margin_s));
+    obstacle_bounds.push_back(bounds_over(o, index_region.t0 - margin_s, index_region.t1 + margin_s));
   }
 }
 

@@ -5,20 +5,24 @@
 // that the same patch is not proposed at the same end again. Ends when no end dangles, when a sweep over the
 // dangling ends changes nothing, or at SearchOptions::max_steps placements.
 //
-// Bridges (our addition): before those candidates, patches that would join d to another dangling end n at
-// once — one end on d, the other on n — placed by the rigid fit of the two ends (rotation from the chord
-// between them, or from d's heading when the chord is short; translation and time shift splitting the
-// residual between both ends), kept when both ends then lie within the match thresholds; at most
-// SearchOptions::bridge_attempts per end, fewest residual first, accepted only when they lower the dangling
-// count. Without them a tile periodic on every axis, where no end can leave by a side, rarely closes: an end
-// pushed forward by the candidates above meets another only by chance. On such a tile, after
-// SearchOptions::stale_sweeps sweeps in a row that did not lower the count, the smallest group of patches
-// connected to a dangling end (through every connection of every character on the way; no keyframe among
-// them; at most half the tiling) is dropped whole: its dangling ends go and no partner is left dangling.
+// Bridges (our addition, bridges.h): patches joining d to another dangling end at once, tried before removing d's
+// patch; on a tile periodic on every axis, where no end can leave by a side, before the candidates, and there
+// also pairs of patches (one on d, a bridge from its other end), the candidates in order of bridges.h's
+// schedule_cost instead of the preference, and only exits continued: an entry waits for an exit to be walked to
+// it (continuing both, they pass each other in time between two sweeps). Without them such a tile rarely closes:
+// an end pushed forward meets another only by chance. On such a tile, after SearchOptions::stale_sweeps sweeps in
+// a row that did not lower the count, the smallest group of patches connected to a dangling end (through every
+// connection of every character on the way; nothing pinned among them; at most half the tiling) is dropped whole:
+// its dangling ends go and no partner is left dangling. The same holds in a window of a windowed run (problem.h),
+// where an end just after the freeze time may have nothing that fits before it: removals would only move it back
+// and forth. On a tile periodic on every axis with a density per area (options.h), a candidate may not raise a
+// time bin above (1 + tolerance) × its target: with no side to leave by, a chain pushed on would fill the tile.
+#include "bridges.h"
 #include "phases.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <set>
@@ -44,42 +48,6 @@ HistoryKey history_key(std::uint32_t type, std::uint32_t fragment, int side, con
           std::lround(at.time * 100), std::lround(wrap_angle(at.heading) * 180 / std::numbers::pi)};
 }
 
-struct Candidate {
-  double cost;
-  std::uint32_t type;
-  std::uint32_t fragment;
-  Transform transform;
-};
-
-// The placement of fragment `fr` of a type that puts its end `mine` (entry when !exit_on_d) on d and its other
-// end on n (world, n on its nearest image), and the normalised residual of both ends; none when an end would
-// then lie outside the match thresholds.
-std::optional<std::pair<Transform, double>> bridge_fit(const Fragment& fr, bool new_is_exit, const EndPoint& d,
-                                                       const Eigen::Vector2d& n_position, double n_time, double n_heading,
-                                                       const MatchThresholds& match) {
-  const std::size_t on_d = new_is_exit ? fr.sample_count() - 1 : 0;
-  const std::size_t on_n = new_is_exit ? 0 : fr.sample_count() - 1;
-  const Eigen::Vector2d chord_patch = fr.positions[on_n] - fr.positions[on_d];
-  const Eigen::Vector2d chord_world = n_position - d.position;
-  Transform t;
-  t.angle = chord_patch.norm() > 0.3 && chord_world.norm() > 0.3
-                ? wrap_angle(std::atan2(chord_world.y(), chord_world.x()) - std::atan2(chord_patch.y(), chord_patch.x()))
-                : wrap_angle(d.heading - fr.headings[on_d]);
-  t.translation = 0.5 * ((d.position + n_position) - rotate(fr.positions[on_d] + fr.positions[on_n], t.angle));
-  t.time_shift = 0.5 * ((d.time + n_time) - (fr.times[on_d] + fr.times[on_n]));
-  double score = 0;
-  const auto end = [&](std::size_t s, const Eigen::Vector2d& p, double time, double heading) {
-    const double dist = (t.apply(fr.positions[s]) - p).norm();
-    const double dt = std::abs(fr.times[s] + t.time_shift - time);
-    const double da = std::abs(wrap_angle(fr.headings[s] + t.angle - heading));
-    score += (dist / match.distance_m) * (dist / match.distance_m) + (dt / match.time_s) * (dt / match.time_s) +
-             (da / match.angle_rad) * (da / match.angle_rad);
-    return dist <= match.distance_m && dt <= match.time_s && da <= match.angle_rad;
-  };
-  if (!end(on_d, d.position, d.time, d.heading) || !end(on_n, n_position, n_time, n_heading)) return std::nullopt;
-  return std::pair(t, score);
-}
-
 }  // namespace
 
 std::array<int, 3> canonicalise(const Problem& problem, Transform& t) {
@@ -103,14 +71,29 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
   const SearchOptions& o = problem.options.search;
   std::set<HistoryKey> history;
   const std::size_t start_dangling = std::max<std::size_t>(1, state.dangling());
-  // How far a bridge may reach: a patch's end-to-end chord (at most twice its extent) and its duration, plus the
-  // match thresholds at both ends.
-  const double bridge_reach_m = 2 * problem.max_extent_m + 2 * problem.options.match.distance_m;
-  const double bridge_span_s = 2 * problem.max_half_duration_s + 2 * problem.options.match.time_s;
-  std::vector<EndMatch> near;
   // Where no end can leave by a side (every axis periodic) bridges are the only way the count falls: try them
   // first; elsewhere they are the last resort before a removal.
   const bool bridges_first = problem.region.periodic[0] && problem.region.periodic[1] && problem.region.periodic[2];
+  // In a window of a windowed run an end may sit where nothing can continue it (a patch would reach back before
+  // the freeze time): removing patch after patch then only moves the end back and forth; its whole group goes.
+  const bool windowed = std::isfinite(problem.freeze);
+  // On a tile periodic on every axis with a density, a chain pushed on and on would fill the tile (no side to
+  // leave by): candidates may not raise a bin above (1 + tolerance) × its target.
+  const bool growth_capped = bridges_first && state.presence().enabled();
+  const double growth_factor = 1 + problem.options.density.tolerance;
+  Presence::Delta growth;
+  const auto within_density = [&](const Attempt& a) {
+    if (!growth_capped) return true;
+    growth.clear();
+    stitcher.presence_delta(a, growth);
+    return state.presence().fits(growth, growth_factor);
+  };
+  Bridger bridger(
+      state, stitcher, report,
+      [&](std::uint32_t type, std::uint32_t fragment, int side, const EndPoint& at) {
+        return history.contains(history_key(type, fragment, side, at));
+      },
+      within_density);
 
   const auto still_dangling = [&](const DanglingEnd& d) {
     if (d.ref.instance >= state.slots()) return false;
@@ -128,7 +111,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
     std::set<std::uint32_t> seen{start};
     for (std::size_t k = 0; k < out.size(); ++k) {
       const LiveInstance& inst = state.at(out[k]);
-      if (inst.keyframed) return std::vector<std::uint32_t>{};
+      if (inst.pinned()) return std::vector<std::uint32_t>{};
       for (const auto& sides : inst.ends) {
         for (const EndLink& e : sides) {
           if (e.status == EndStatus::connected && seen.insert(e.partner.instance).second) out.push_back(e.partner.instance);
@@ -164,57 +147,24 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
       const EndPoint at = problem.end_point(holder.type, holder.paths, d.ref.fragment, d.side == 1);
       const bool new_is_exit = d.side == 0;  // a dangling entry takes an exit, and the other way round
 
-      // Bridges: patches joining d to another dangling end n at once (see the file comment).
-      const auto try_bridges = [&]() {
-      std::vector<Candidate> bridges;
-      if (o.bridge_attempts > 0) {
-        near.clear();
-        state.dangling_ends().near(at, new_is_exit, bridge_reach_m, new_is_exit ? -bridge_span_s : 0.0,
-                                   new_is_exit ? 0.0 : bridge_span_s, near);
-        for (const EndMatch& m : near) {
-          const LiveInstance& other = state.at(m.end.instance);
-          const EndPoint n = problem.end_point(other.type, other.paths, m.end.fragment, new_is_exit);
-          const Eigen::Vector2d n_position =
-              n.position + Eigen::Vector2d(m.image[0] * problem.periods.p[0], m.image[1] * problem.periods.p[1]);
-          const double n_time = n.time + m.image[2] * problem.periods.p[2];
-          for (std::uint32_t k : problem.usable_types) {
-            const PatchType& type = problem.library.types[k];
-            for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
-              const Fragment& fr = type.fragments[f];
-              if (!fr.is_character()) continue;
-              if ((new_is_exit ? fr.exit_class : fr.entry_class) != at.pose_class) continue;
-              if ((new_is_exit ? fr.entry_class : fr.exit_class) != n.pose_class) continue;
-              if (history.contains(history_key(k, f, new_is_exit ? 1 : 0, at))) continue;
-              const auto fit = bridge_fit(fr, new_is_exit, at, n_position, n_time, n.heading, problem.options.match);
-              if (fit) bridges.push_back({fit->second, k, f, fit->first});
-            }
-          }
-        }
-        std::sort(bridges.begin(), bridges.end(), [](const Candidate& a, const Candidate& b) {
-          return std::tie(a.cost, a.type, a.fragment, a.transform.time_shift, a.transform.translation.x(),
-                          a.transform.translation.y()) < std::tie(b.cost, b.type, b.fragment, b.transform.time_shift,
-                                                                   b.transform.translation.x(), b.transform.translation.y());
-        });
-        if (bridges.size() > o.bridge_attempts) bridges.resize(o.bridge_attempts);
-      }
-      for (const Candidate& c : bridges) {
-        if (report.search_steps >= o.max_steps) break;
-        ++report.search_steps;
-        Transform t = c.transform;
-        const std::array<int, 3> k = canonicalise(problem, t);
-        const std::array<int, 3> image = new_is_exit ? std::array<int, 3>{-k[0], -k[1], -k[2]} : k;
-        const Attempt a = stitcher.stitch({c.type, t, false, NewLink{c.fragment, new_is_exit, d.ref, image}});
-        if (!a.feasible || a.delta_dangling >= 0 || !stitcher.valid(a)) continue;
-        state.apply(a.change);
+      if (bridges_first && bridger.one(d.ref, d.side)) {
         changed = true;
-        return true;
+        continue;
       }
-      return false;
-      };
-      if (bridges_first && try_bridges()) continue;
+      // On a tile periodic on every axis only exits are continued (see the file comment).
+      if (bridges_first && d.side == 0) continue;
+      // There, the dangling ends the candidates' open ends could walk to.
+      std::vector<EndPoint> partners;
+      if (bridges_first) {
+        for (const DanglingEnd& e : ends) {
+          if (e.side == d.side || !still_dangling(e)) continue;
+          const LiveInstance& other = state.at(e.ref.instance);
+          partners.push_back(problem.end_point(other.type, other.paths, e.ref.fragment, e.side == 1));
+        }
+      }
 
       // Every usable patch end that matches d, placed exactly on it, best preference first.
-      std::vector<Candidate> candidates;
+      std::vector<Placement> candidates;
       for (std::uint32_t k : problem.usable_types) {
         const PatchType& type = problem.library.types[k];
         for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
@@ -226,15 +176,43 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
           t.angle = wrap_angle(at.heading - fr.headings[s]);
           t.translation = at.position - rotate(fr.positions[s], t.angle);
           t.time_shift = at.time - fr.times[s];
-          candidates.push_back({preference.cost(k, t), k, f, t});
+          double cost = preference.cost(k, t);
+          if (bridges_first) {
+            const std::size_t open = new_is_exit ? 0 : fr.sample_count() - 1;  // the candidate's other end
+            cost = bridger.schedule_cost(t.apply(fr.positions[open]), fr.times[open] + t.time_shift, d.side, partners);
+          }
+          candidates.push_back({cost, k, f, t});
         }
       }
-      std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+      std::sort(candidates.begin(), candidates.end(), [](const Placement& a, const Placement& b) {
         return std::tie(a.cost, a.type, a.fragment) < std::tie(b.cost, b.type, b.fragment);
       });
 
       bool placed = false;
-      for (const Candidate& c : candidates) {
+      if (bridges_first && d.side == 1) {
+        // A planned way to the nearest entries first (bridges.h, close).
+        std::vector<EndPoint> nearest = partners;
+        const auto distance = [&](const EndPoint& n) {
+          Eigen::Vector2d v = n.position - at.position;
+          for (int axis = 0; axis < 2; ++axis) {
+            const double p = problem.periods.p[static_cast<std::size_t>(axis)];
+            v[axis] -= std::round(v[axis] / p) * p;
+          }
+          return v.norm();
+        };
+        std::stable_sort(nearest.begin(), nearest.end(),
+                         [&](const EndPoint& a, const EndPoint& b) { return distance(a) < distance(b); });
+        if (nearest.size() > 3) nearest.resize(3);
+        if (bridger.close(d.ref, nearest)) {
+          changed = true;
+          continue;
+        }
+      }
+      if (bridges_first && bridger.two(d.ref, d.side, candidates)) {
+        changed = true;
+        continue;
+      }
+      for (const Placement& c : candidates) {
         for (std::size_t i = 0; i < o.jitter_attempts && report.search_steps < o.max_steps; ++i) {
           ++report.search_steps;
           Transform t = c.transform;
@@ -257,7 +235,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
             if (i == 0 && a.feasible) break;  // Algorithm 2 line 5: this patch would add dangling ends
             continue;
           }
-          if (stitcher.valid(a)) {
+          if (within_density(a) && stitcher.valid(a)) {
             state.apply(a.change);
             placed = changed = true;
             break;
@@ -266,8 +244,11 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
         if (placed) break;
       }
       if (placed || !still_dangling(d)) continue;
-      if (!bridges_first && try_bridges()) continue;
-      if (holder.keyframed) continue;  // nothing was applied since `holder` was taken: still valid
+      if (!bridges_first && bridger.one(d.ref, d.side)) {
+        changed = true;
+        continue;
+      }
+      if (holder.pinned()) continue;  // nothing was applied since `holder` was taken: still valid
       // Nothing fits d: remove its patch (Algorithm 2 line 15) and remember where it was attached.
       for (std::uint32_t f = 0; f < holder.ends.size(); ++f) {
         for (int side = 0; side < 2; ++side) {
@@ -289,7 +270,7 @@ void search(TilingState& state, Stitcher& stitcher, const PreferenceModel& prefe
     } else {
       ++stale;
     }
-    if (bridges_first && stale >= o.stale_sweeps) {
+    if ((bridges_first || windowed) && stale >= o.stale_sweeps) {
       // The smallest component holding a dangling end (ties: the first in sweep order), if it is at most half
       // of the tiling: dropping more would trade the tiling for an empty one.
       std::vector<std::uint32_t> drop;

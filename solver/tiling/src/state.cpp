@@ -7,9 +7,33 @@ namespace throng::tiling {
 
 TilingState::TilingState(const Problem& problem)
     : problem_(problem),
-      segments_(problem.region, problem.options.index, index_margin_m(problem.options, problem.max_extent_m),
+      segments_(problem.index_region, problem.options.index, index_margin_m(problem.options, problem.max_extent_m),
                 index_margin_s(problem.options, problem.max_half_duration_s)),
-      ends_(problem.region, problem.options.match) {}
+      ends_(problem.index_region, problem.options.match),
+      presence_(problem.environment, problem.options.density, problem.presence_span) {}
+
+void TilingState::presence_of(std::uint32_t id, double sign, Presence::Delta& delta) const {
+  if (!presence_.enabled()) return;
+  const LiveInstance& inst = instances_[id];
+  const PatchType& type = problem_.library.types[inst.type];
+  for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
+    if (!type.fragments[f].is_character()) continue;
+    presence_.path(inst.paths[f], sign, delta);
+    for (int side = 0; side < 2; ++side) {
+      const EndStatus status = inst.ends[f][static_cast<std::size_t>(side)].status;
+      if (status != EndStatus::dangling && status != EndStatus::free) continue;
+      const EndPoint e = problem_.end_point(inst.type, inst.paths, f, side == 1);
+      presence_.projection(e.position, e.heading, e.time, side == 1, status == EndStatus::dangling, sign, delta);
+    }
+  }
+}
+
+void TilingState::track_presence(std::uint32_t id, double sign) {
+  if (!presence_.enabled()) return;
+  scratch_.clear();
+  presence_of(id, sign, scratch_);
+  presence_.apply(scratch_);
+}
 
 std::uint32_t TilingState::next_id() const noexcept {
   return free_ids_.empty() ? static_cast<std::uint32_t>(instances_.size()) : free_ids_.back();
@@ -59,6 +83,15 @@ std::uint32_t TilingState::apply(const Change& change) {
     free_ids_.pop_back();
   }
   const PatchType& type = problem_.library.types[change.type];
+  // The instances the change touches leave the presence as they were and come back as they become.
+  std::vector<std::uint32_t> touched;
+  if (presence_.enabled()) {
+    for (const NewLink& link : change.links) touched.push_back(link.existing.instance);
+    for (const auto& m : change.modified) touched.push_back(m.first);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (std::uint32_t t : touched) track_presence(t, -1.0);
+  }
 
   // 1. The existing ends the new instance is stitched to stop dangling.
   for (const NewLink& link : change.links) {
@@ -90,7 +123,7 @@ std::uint32_t TilingState::apply(const Change& change) {
   }
   // 3. The new instance.
   LiveInstance& inst = instances_[id];
-  inst = LiveInstance{true, change.type, change.transform, change.keyframed, change.paths, {}};
+  inst = LiveInstance{true, change.type, change.transform, change.keyframed, false, change.paths, {}};
   inst.ends.resize(type.fragments.size());
   for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
     if (!type.fragments[f].is_character()) continue;
@@ -107,13 +140,16 @@ std::uint32_t TilingState::apply(const Change& change) {
   index_ends(id, true);
   connections_ += change.links.size();
   ++live_;
+  for (std::uint32_t t : touched) track_presence(t, 1.0);
+  track_presence(id, 1.0);
   return id;
 }
 
 void TilingState::remove(std::uint32_t id) {
   LiveInstance& inst = instances_[id];
-  assert(inst.alive);
+  assert(inst.alive && !inst.fixed);
   const PatchType& type = problem_.library.types[inst.type];
+  track_presence(id, -1.0);
   index_ends(id, false);
   for (std::uint32_t f = 0; f < inst.ends.size(); ++f) {
     if (!type.fragments[f].is_character()) continue;
@@ -121,14 +157,51 @@ void TilingState::remove(std::uint32_t id) {
     for (int side = 0; side < 2; ++side) {
       const EndLink e = inst.ends[f][static_cast<std::size_t>(side)];
       if (e.status != EndStatus::connected) continue;
-      set_unconnected(e.partner.instance, e.partner.fragment, 1 - side);
       --connections_;
+      if (e.partner.instance == gone) continue;
+      track_presence(e.partner.instance, -1.0);
+      set_unconnected(e.partner.instance, e.partner.fragment, 1 - side);
+      track_presence(e.partner.instance, 1.0);
     }
   }
   segments_.remove(id, inst.paths, type);
   inst = LiveInstance{};
   free_ids_.push_back(id);
   --live_;
+}
+
+void TilingState::restore(std::vector<LiveInstance> instances) {
+  assert(live_ == 0 && instances_.empty());
+  instances_ = std::move(instances);
+  free_ids_.clear();
+  dangling_ = connections_ = character_fragments_ = live_ = 0;
+  for (std::uint32_t id = 0; id < instances_.size(); ++id) {
+    LiveInstance& inst = instances_[id];
+    if (!inst.alive) {
+      free_ids_.push_back(id);
+      continue;
+    }
+    const PatchType& type = problem_.library.types[inst.type];
+    for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
+      if (!type.fragments[f].is_character()) continue;
+      ++character_fragments_;
+      for (int side = 0; side < 2; ++side) {
+        EndLink& e = inst.ends[f][static_cast<std::size_t>(side)];
+        if (e.status == EndStatus::connected) {
+          // Each connection once: at its exit, or at an entry whose exit is gone.
+          if (side == 1 || e.partner.instance == gone) ++connections_;
+          continue;
+        }
+        e = EndLink{classify(problem_.end_point(inst.type, inst.paths, f, side == 1), side == 1), {}, {0, 0, 0}};
+      }
+    }
+    segments_.insert(id, type, inst.paths);
+    index_ends(id, true);
+    ++live_;
+    track_presence(id, 1.0);
+  }
+  // Free ids are reused last-freed first (next_id): the lowest id first.
+  std::reverse(free_ids_.begin(), free_ids_.end());
 }
 
 Tiling TilingState::snapshot() const {
@@ -145,7 +218,7 @@ Tiling TilingState::snapshot() const {
     if (!inst.alive) continue;
     for (std::uint32_t f = 0; f < inst.ends.size(); ++f) {
       const EndLink& e = inst.ends[f][1];
-      if (e.status != EndStatus::connected) continue;
+      if (e.status != EndStatus::connected || e.partner.instance == gone) continue;
       t.connections.push_back(Connection{{renumber[id], f}, {renumber[e.partner.instance], e.partner.fragment}, e.image});
     }
   }

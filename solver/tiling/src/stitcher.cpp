@@ -180,7 +180,7 @@ bool Stitcher::deform(const Proposal& proposal, Attempt& attempt) {
   Change& change = attempt.change;
   const PatchType& type = problem_.library.types[proposal.type];
 
-  // Members: the new instance, then (the paper) the instances it is stitched to, unless keyframed.
+  // Members: the new instance, then (the paper) the instances it is stitched to, unless pinned (keyframed or fixed).
   std::vector<std::uint32_t> ids{state_.next_id()};
   std::vector<const PatchType*> types{&type};
   JointProblem jp;
@@ -194,7 +194,7 @@ bool Stitcher::deform(const Proposal& proposal, Attempt& attempt) {
     for (const NewLink& link : change.links) {
       const std::uint32_t x = link.existing.instance;
       const LiveInstance& inst = state_.at(x);
-      if (inst.keyframed || member_of(x) >= 0) continue;
+      if (inst.pinned() || member_of(x) >= 0) continue;
       ids.push_back(x);
       types.push_back(&problem_.library.types[inst.type]);
       const PatchSystem& sys = problem_.systems[inst.type];
@@ -248,6 +248,80 @@ bool Stitcher::deform(const Proposal& proposal, Attempt& attempt) {
                                                     x.transform.angle, solution.space[m], solution.time[m]));
   }
   return true;
+}
+
+bool Stitcher::entries_reachable(const Attempt& attempt) const {
+  if (!std::isfinite(problem_.freeze)) return true;
+  const Change& change = attempt.change;
+  const PatchType& type = problem_.library.types[change.type];
+  for (std::uint32_t f = 0; f < type.fragments.size(); ++f) {
+    if (!type.fragments[f].is_character()) continue;
+    const bool linked = std::any_of(change.links.begin(), change.links.end(),
+                                    [&](const NewLink& l) { return l.new_fragment == f && !l.new_is_exit; });
+    if (linked) continue;
+    const EndPoint e = problem_.end_point(change.type, change.paths, f, false);
+    if (state_.classify(e, false) != EndStatus::dangling) continue;
+    const Eigen::Vector2d back = -Eigen::Vector2d(std::cos(e.heading), std::sin(e.heading));
+    // The last patch in (at most the longest) must start after the freeze time too.
+    const double in = time_to_side(problem_.region, e.position, back, problem_.options.density.projection_speed_mps);
+    if (in + 2 * problem_.max_half_duration_s > e.time - problem_.freeze) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void Stitcher::placement_presence(std::uint32_t type, const std::vector<Path>& paths, Presence::Delta& delta) const {
+  const PatchType& t = problem_.library.types[type];
+  for (std::size_t f = 0; f < t.fragments.size(); ++f) {
+    if (t.fragments[f].is_character()) state_.presence().path(paths[f], 1.0, delta);
+  }
+}
+
+void Stitcher::presence_delta(const Attempt& attempt, Presence::Delta& delta) const {
+  const Presence& presence = state_.presence();
+  if (!presence.enabled()) return;
+  const Change& change = attempt.change;
+  // Adds the presence of an instance of `type` with `paths` whose ends have `status(f, side)`.
+  const auto add = [&](std::uint32_t type, const std::vector<Path>& paths, const auto& status) {
+    const PatchType& t = problem_.library.types[type];
+    for (std::uint32_t f = 0; f < t.fragments.size(); ++f) {
+      if (!t.fragments[f].is_character()) continue;
+      presence.path(paths[f], 1.0, delta);
+      for (int side = 0; side < 2; ++side) {
+        const EndStatus s = status(f, side);
+        if (s != EndStatus::dangling && s != EndStatus::free) continue;
+        const EndPoint e = problem_.end_point(type, paths, f, side == 1);
+        presence.projection(e.position, e.heading, e.time, side == 1, s == EndStatus::dangling, 1.0, delta);
+      }
+    }
+  };
+  // The existing instances the change touches: linked to, or re-deformed.
+  std::vector<std::uint32_t> touched;
+  for (const NewLink& link : change.links) touched.push_back(link.existing.instance);
+  for (const auto& m : change.modified) touched.push_back(m.first);
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  for (std::uint32_t id : touched) {
+    state_.presence_of(id, -1.0, delta);
+    const LiveInstance& x = state_.at(id);
+    const std::vector<Path>& paths = paths_of(state_, attempt, id);
+    const bool moved = &paths != &x.paths;
+    add(x.type, paths, [&](std::uint32_t f, int side) {
+      for (const NewLink& link : change.links) {
+        if (link.existing == FragmentRef{id, f} && (link.new_is_exit ? 0 : 1) == side) return EndStatus::connected;
+      }
+      const EndStatus before = x.ends[f][static_cast<std::size_t>(side)].status;
+      if (!moved || (before != EndStatus::dangling && before != EndStatus::free)) return before;
+      return state_.classify(problem_.end_point(x.type, paths, f, side == 1), side == 1);
+    });
+  }
+  add(change.type, change.paths, [&](std::uint32_t f, int side) {
+    for (const NewLink& link : change.links) {
+      if (link.new_fragment == f && link.new_is_exit == (side == 1)) return EndStatus::connected;
+    }
+    return state_.classify(problem_.end_point(change.type, change.paths, f, side == 1), side == 1);
+  });
 }
 
 bool Stitcher::connected(FragmentRef a, FragmentRef b, const Attempt& attempt) const {
@@ -331,6 +405,15 @@ bool Stitcher::valid(const Attempt& attempt) {
   std::vector<Tested> tested{{fresh, &problem_.library.types[change.type], &change.paths}};
   for (const auto& [mid, paths] : change.modified) tested.push_back({mid, &problem_.library.types[state_.at(mid).type], &paths});
 
+  // A window may not change what lies before its freeze time (problem.h): the past is already final.
+  if (std::isfinite(problem_.freeze)) {
+    for (const Tested& t : tested) {
+      for (const Path& p : *t.paths) {
+        if (p.times.front() < problem_.freeze) return false;
+      }
+    }
+  }
+
   // Deformation within limits (the new instance only deforms when stitched).
   for (const Tested& t : tested) {
     if (t.id == fresh && change.links.empty()) continue;
@@ -355,7 +438,7 @@ bool Stitcher::valid(const Attempt& attempt) {
     for (std::uint32_t f = 0; f < x.ends.size(); ++f) {
       for (int side = 0; side < 2; ++side) {
         const EndLink& e = x.ends[f][static_cast<std::size_t>(side)];
-        if (e.status != EndStatus::connected) continue;
+        if (e.status != EndStatus::connected || e.partner.instance == gone) continue;
         if (std::abs(wrap_angle(heading({mid, f}, side == 1) - heading(e.partner, side == 0))) > max_angle) return false;
       }
     }

@@ -37,8 +37,20 @@ class Stitcher {
   [[nodiscard]] Attempt stitch(const Proposal& proposal);
 
   /// IsValid: deformation within limits, headings matched at every connection of a deformed instance, no
-  /// interpenetration with other instances or obstacles.
+  /// interpenetration with other instances or obstacles, and (in a window) no sample before its freeze time.
   [[nodiscard]] bool valid(const Attempt& attempt);
+
+  /// What applying the attempt would change in the state's presence (presence.h): the instances it touches as
+  /// they are, subtracted, and as they would become, added.
+  void presence_delta(const Attempt& attempt, Presence::Delta& delta) const;
+  /// In a window (problem.h: a finite freeze time): whether every entry the attempt leaves dangling can be
+  /// reached by a character walking straight in from a side of the region after the freeze time (at
+  /// DensityOptions::projection_speed_mps). Nothing before the freeze may change, so a new character can only
+  /// come in from a side; phase 1 refuses seeds whose entries could not be continued back to one. Always true
+  /// outside a window.
+  [[nodiscard]] bool entries_reachable(const Attempt& attempt) const;
+  /// The presence of a rigid placement's character paths alone (no projection): phase 1's quick test.
+  void placement_presence(std::uint32_t type, const std::vector<Path>& paths, Presence::Delta& delta) const;
 
  private:
   bool deform(const Proposal& proposal, Attempt& attempt);

@@ -165,10 +165,10 @@ void check_keyframes(const Problem& problem, const std::vector<Keyframe>& keyfra
 }
 
 // The ranking key of a chain: smaller is better.
-std::tuple<double, double, double, double> score(const ChainReport& r, const Options& options) {
+std::tuple<double, double, double, double, double> score(const ChainReport& r, const Options& options) {
   const double characters = static_cast<double>(r.characters);
   const double density = options.characters > 0 ? std::abs(characters - static_cast<double>(options.characters)) : -characters;
-  return {static_cast<double>(r.dangling), density, r.mean_preference_cost, static_cast<double>(r.chain)};
+  return {static_cast<double>(r.dangling), r.density_distance, density, r.mean_preference_cost, static_cast<double>(r.chain)};
 }
 
 std::vector<double> as_doubles(const ChainReport& r) {

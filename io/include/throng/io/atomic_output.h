@@ -1,40 +1,63 @@
-// Atomic output files: write to a temporary file beside the target, rename on success.
+// Atomic, safe output files: every file throng writes (crowd files, CSV, SVG/PNG pictures) goes through this.
 //
-// A failed or interrupted run leaves no partial output: the temporary file is removed when an AtomicOutput is
-// destroyed without commit(), and on SIGINT/SIGTERM by the handler that install_interrupt_cleanup() sets up
-// (the program calls it once). The target is replaced only by a complete file (rename is atomic on one file
-// system), and an input is never opened for writing.
+// - The data goes to a temporary file created in the target's folder with O_CREAT | O_EXCL | O_NOFOLLOW under an
+//   unpredictable name (`.NAME.tmp-` and 16 random hex digits): a symbolic link or file planted in a shared
+//   output folder is never followed or reused. Writers write through its descriptor (write(), or
+//   descriptor_path() for a library that opens files by name), never by the temporary's name.
+// - Only a regular file (or nothing) is ever replaced: a folder, device node (`-o /dev/null` as root), symbolic
+//   link, pipe or socket at the target is refused before any work.
+// - commit() flushes the file to disk (fsync), renames it onto the target (atomic on one file system) and flushes
+//   the folder, so a crash leaves the old file or the new one, never a mix.
+// - A failed or interrupted run leaves no partial output: the temporary file is removed when an AtomicOutput is
+//   destroyed without commit(), and on every catchable termination signal by the handler that
+//   install_interrupt_cleanup() sets up (the program calls it once). An input is never opened for writing.
 #pragma once
 
 #include <filesystem>
+#include <string_view>
 
 namespace throng {
 
 class AtomicOutput {
  public:
-  /// Prepares to write `target`: checks its folder exists and is writable (IoError otherwise) and picks a
-  /// temporary name in that folder. Nothing is created yet.
+  /// Checks `target` and creates the temporary file. ConfigError (exit 2) for an empty name; IoError (exit 4)
+  /// naming the target when its folder is missing or not writable, when something other than a regular file is
+  /// there, or when the temporary cannot be created.
   explicit AtomicOutput(std::filesystem::path target);
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;
   AtomicOutput& operator=(const AtomicOutput&) = delete;
 
-  /// Where to write the data now.
+  /// The temporary file's name (for messages and tests; write through descriptor() or descriptor_path()).
   [[nodiscard]] const std::filesystem::path& temporary() const noexcept { return temporary_; }
   [[nodiscard]] const std::filesystem::path& target() const noexcept { return target_; }
+  /// The temporary file's descriptor (open for writing).
+  [[nodiscard]] int descriptor() const noexcept { return fd_; }
+  /// A name that opens exactly the temporary file created here, whatever happens to names in its folder
+  /// (`/proc/self/fd/N`; the temporary's name where /proc is not mounted). For libraries that open by name (HDF5).
+  [[nodiscard]] std::filesystem::path descriptor_path() const;
 
-  /// Renames the temporary file onto the target. Throws IoError if that fails (the temporary is then removed).
+  /// Appends `bytes` to the temporary file. IoError naming the target on failure (a full disk included).
+  void write(std::string_view bytes);
+
+  /// Flushes the temporary file to disk, renames it onto the target and flushes the folder. Throws IoError if any
+  /// step fails (the temporary is then removed and the target left as it was).
   void commit();
 
  private:
   std::filesystem::path target_;
   std::filesystem::path temporary_;
+  int folder_fd_ = -1;
+  int fd_ = -1;
   int slot_ = -1;
   bool committed_ = false;
 };
 
-/// Installs SIGINT/SIGTERM handlers that remove every pending temporary output and exit with 128 + signal
-/// (130 for Ctrl-C). Safe to call more than once.
+/// Installs handlers for every catchable signal whose default is to end the process (SIGHUP, SIGINT, SIGQUIT,
+/// SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF, SIGABRT) that remove every
+/// pending temporary output and exit with 128 + signal (130 for Ctrl-C). A signal ignored when the program
+/// started (`nohup` ignores SIGHUP) stays ignored. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL) are left to the
+/// sanitizers and the system. Safe to call more than once.
 void install_interrupt_cleanup();
 
 /// Throws ConfigError when `output` names the same file as `input` (an input is never overwritten).

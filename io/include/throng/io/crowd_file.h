@@ -26,6 +26,7 @@
 #include <throng/core/crowd_motion.h>
 #include <throng/core/scene.h>
 #include <throng/io/hdf5.h>
+#include <throng/io/read_limits.h>
 
 #include <array>
 #include <cstdint>
@@ -68,7 +69,11 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 /// that disagrees with the stored region. H5MD files from other programs (no /parameters/throng) are accepted:
 /// ids from id/value (or 0..N-1), radius 0.25 m, no obstacles, and a region from the box when it is periodic in
 /// x or y.
-[[nodiscard]] CrowdFile read_crowd_file(const std::filesystem::path& path);
+///
+/// Bounded (see hdf5.h): before the first array is read, the memory the crowd needs (frames × agents for the
+/// positions, ids and velocities) is estimated from the datasets' shapes and refused with the estimate when it
+/// exceeds `limits`; every dataset is then checked against the file's size and charged as it is read.
+[[nodiscard]] CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits = {});
 
 /// Opens a crowd file's /parameters/throng group for method data, with `h5::File` kept alive by the caller.
 [[nodiscard]] h5::Group open_throng_parameters(const h5::File& file);

@@ -2,11 +2,26 @@
 // shape checks, and string/number attributes. Every failure throws IoError or InputError naming the file and the
 // object path, never an HDF5 error stack on stderr.
 //
+// Reading is bounded: a file opened for reading hands libhdf5 nothing it has not checked first.
+//  - Before a dataset or attribute is read, its element count is computed with overflow checks, its declared size
+//    is compared with what the file stores (contiguous data must lie inside the file; chunked data may expand at
+//    most by deflate's largest ratio, 1032:1; a chunk must fit the same bound), and the memory it needs is charged
+//    to the file's MemoryBudget (ReadLimits): InputError with the estimate when any of these fails.
+//  - Data stored outside the file is refused: external storage, external (and user-defined) links, virtual
+//    datasets; filters other than deflate, shuffle and fletcher32 are refused and HDF5 filter plugins are never
+//    loaded.
+//  - Before the first variable-length string is read, the file's global heap collections are walked as libhdf5
+//    1.10 walks them, and a collection whose object sizes do not add up refuses the file (libhdf5 would loop
+//    forever or read past the collection).
+//
 // Objects are created without modification times, so the same data gives the same file bytes.
 #pragma once
 
+#include <throng/io/read_limits.h>
+
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,10 +62,15 @@ struct Layout {
   std::uint64_t chunk_rows = 0;      ///< rows of the first axis per chunk; 0 = choose (~256 KiB chunks)
 };
 
+/// What a file opened for reading checks against: its size, its memory budget, its link access rules (defined in
+/// hdf5.cpp). Shared by the file and its groups.
+struct ReadContext;
+
 /// A group (or the file's root group) of an open file; knows the file name and its own path for messages.
 class Group {
  public:
-  Group(Handle handle, std::string file, std::string path) : handle_(std::move(handle)), file_(std::move(file)), path_(std::move(path)) {}
+  Group(Handle handle, std::string file, std::string path, std::shared_ptr<ReadContext> context)
+      : handle_(std::move(handle)), file_(std::move(file)), path_(std::move(path)), context_(std::move(context)) {}
 
   [[nodiscard]] Id id() const noexcept { return handle_.id(); }
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
@@ -71,8 +91,13 @@ class Group {
   void write(const std::string& name, const std::vector<std::string>& values) const;  ///< 1-D variable-length UTF-8 strings
   void write_scalar(const std::string& name, const std::string& value) const;          ///< scalar variable-length string
 
+  /// A numeric dataset's shape, checked as a read would check it (storage, size, memory) but not read: lets a
+  /// reader estimate what a whole file needs before it reads the first large array.
+  [[nodiscard]] std::vector<std::uint64_t> shape(const std::string& name) const;
+
   /// Whole-dataset reads converting to the requested type (HDF5 converts numeric types). `expected_rank` ≥ 0 checks
-  /// the rank; throws InputError "missing dataset" / "has rank r, expected k" naming the dataset.
+  /// the rank; throws InputError "missing dataset" / "has rank r, expected k" naming the dataset, and the bounds
+  /// of the header comment.
   [[nodiscard]] Array<double> read_doubles(const std::string& name, int expected_rank = -1) const;
   [[nodiscard]] Array<std::int64_t> read_int64(const std::string& name, int expected_rank = -1) const;
   [[nodiscard]] Array<std::int32_t> read_int32(const std::string& name, int expected_rank = -1) const;
@@ -87,11 +112,16 @@ class Group {
   void set_attribute(const std::string& name, const std::vector<std::string>& values) const;
   void set_attribute(const std::string& name, const std::vector<std::int32_t>& values) const;
   void set_attribute(const std::string& name, std::int64_t value) const;
+  void set_attribute(const std::string& name, std::uint64_t value) const;  ///< stored as an unsigned 64-bit integer
   void set_attribute(const std::string& name, double value) const;
   [[nodiscard]] bool has_attribute(const std::string& name) const;
   [[nodiscard]] std::optional<std::string> string_attribute(const std::string& name) const;  ///< first if an array
   [[nodiscard]] std::vector<std::string> string_array_attribute(const std::string& name) const;  ///< empty if absent
   [[nodiscard]] std::vector<std::int64_t> int_attribute(const std::string& name) const;  ///< scalar or 1-D
+  /// A single unsigned 64-bit integer; a signed attribute is taken bit for bit (−1 is 2^64 − 1: how seeds of
+  /// 2^63 and more were stored before they were stored unsigned).
+  [[nodiscard]] std::optional<std::uint64_t> unsigned_attribute(const std::string& name) const;
+  /// A single number (InputError when the attribute holds several values, none, or is not numeric).
   [[nodiscard]] std::optional<double> double_attribute(const std::string& name) const;
 
   /// Attributes on a dataset or group below this one.
@@ -103,6 +133,7 @@ class Group {
   Handle handle_;
   std::string file_;
   std::string path_;
+  std::shared_ptr<ReadContext> context_;
 };
 
 /// An HDF5 file, open for reading or newly created for writing.
@@ -111,17 +142,20 @@ class File {
   /// Creates (truncating) `path` for writing; messages call it `display_name` (default: its file name), so a
   /// temporary file is reported under the name of the file it becomes. Throws IoError.
   static File create(const std::filesystem::path& path, const std::string& display_name = {});
-  /// Opens an existing file read-only. Throws IoError (missing, unreadable) or InputError (not HDF5, truncated).
-  static File open(const std::filesystem::path& path);
+  /// Opens an existing file read-only. Throws IoError (missing, a folder, not a regular file, unreadable) or
+  /// InputError (not HDF5, truncated). Every read through it is bounded by `limits` (one budget for the file).
+  static File open(const std::filesystem::path& path, const ReadLimits& limits = {});
 
   [[nodiscard]] Group root() const;
   /// Flushes and closes; throws IoError if HDF5 reports a failure (a full disk shows here).
   void close();
 
  private:
-  File(Handle handle, std::string name) : handle_(std::move(handle)), name_(std::move(name)) {}
+  File(Handle handle, std::string name, std::shared_ptr<ReadContext> context)
+      : handle_(std::move(handle)), name_(std::move(name)), context_(std::move(context)) {}
   Handle handle_;
   std::string name_;
+  std::shared_ptr<ReadContext> context_;
 };
 
 }  // namespace throng::h5

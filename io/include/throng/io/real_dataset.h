@@ -15,6 +15,7 @@
 #pragma once
 
 #include <throng/io/crowd_file.h>
+#include <throng/io/read_limits.h>
 
 #include <filesystem>
 #include <string>
@@ -27,9 +28,13 @@ struct RealDatasetOptions {
   double wall_thickness = 0.1;   ///< metres, total width of map.xml's wall segments
 };
 
-/// Reads a dataset folder (or its obsmat.txt). Throws IoError (missing files), InputError naming file and line
-/// (malformed rows, NaN, an id repeated in one frame, a malformed map.xml), ConfigError (unknown frame rate).
-[[nodiscard]] CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options);
+/// Reads a dataset folder (or its obsmat.txt). Throws IoError (missing files; a folder, device or pipe where a
+/// file is expected), InputError naming file and line (malformed rows: every field must be a whole number,
+/// "1.5xyz" is refused; frame and id whole numbers from 0 to 2^53; NaN; an id repeated in one frame; a malformed
+/// map.xml), InputError with the estimate when the frames × agents arrays exceed `limits` (checked before they
+/// are allocated), ConfigError (unknown frame rate).
+[[nodiscard]] CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options,
+                                            const ReadLimits& limits = {});
 
 /// The video frame rate of a known dataset folder name (eth 15; hotel, zara01, zara02, univ, students* 25), or 0.
 [[nodiscard]] double known_video_fps(const std::string& folder_name);

@@ -132,9 +132,10 @@ struct TilingData {
 
 /// Reads a crowd file written by `throng tile`. IoError (missing or unreadable), InputError (no tiling data,
 /// bad shapes).
-[[nodiscard]] TilingData read_tiling_data(const std::filesystem::path& path);
+/// Bounded by `limits` as read_crowd_file is; indices and stored check options are range-checked (InputError).
+[[nodiscard]] TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits& limits = {});
 
 /// Whether a crowd file holds /parameters/throng/tiling. IoError when it cannot be opened.
-[[nodiscard]] bool has_tiling_data(const std::filesystem::path& path);
+[[nodiscard]] bool has_tiling_data(const std::filesystem::path& path, const ReadLimits& limits = {});
 
 }  // namespace throng

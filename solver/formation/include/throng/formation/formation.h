@@ -28,6 +28,9 @@
 //      for rotations that do not commute leave the path between M_n and M_{n+1} even at τ = 0; here τ = 0 gives
 //      exactly the two-keyframe path of each interval. Two keyframes give the §3.2 path M(t) = R^{s(t)} S with
 //      s = c1 + c2 (s(t) = t when τ = 1; the default τ = 0.5 eases in and out a little).
+//      Options::keyframe_product = paper gives Eq. 5 as printed instead (KeyframeProduct below). A keyframe
+//      marked sharp (Keyframe::sharp) is duplicated in the control keyframes like an endpoint (§4.1), so the
+//      paths may turn there.
 //   6. Coefficients (§3.3, Eq. 4): each (α_j, β_j) interpolated in polar form, length and angle with the same
 //      spline weights, angles unwrapped the shorter way round between consecutive keyframes; in 3-D (§4.5) the
 //      direction follows the same cumulative product of powers of the shortest rotations between consecutive
@@ -46,16 +49,24 @@
 //   9. Hierarchy (§4.4): a tree of groups; each group runs steps 1–8 on its items (its direct members and the
 //      barycentres of its subgroups) relative to its own barycentre, whose path comes from the parent group.
 //      Without a tree, one is built by spectral clustering (recursive Fiedler bisection of the graph summed
-//      over the keyframes) when there are more individuals than Options::auto_group_size (default 2,000).
+//      over the keyframes; sparse Lanczos beyond 400 items, fiedler.h) when there are more individuals than
+//      Options::auto_group_size (default 2,000), with groups of at most Options::auto_cluster_size items
+//      (default 250).
 //  10. Collision avoidance (§4.3): social forces (Helbing & Molnár 1995) drive each individual along its spectral
 //      path while individuals repel; then the paths are smoothed (keyframe frames pinned) while a minimum distance
 //      is kept by projection at every frame.
 //  11. Beyond the paper: individual matching between keyframes by minimum-cost assignment when rows are not in
 //      correspondence; keyframes taken from an existing crowd at given frames.
+//  12. The paper's baselines (Options::interpolation, Interpolation below): linear interpolation of positions and
+//      simple polar interpolation, in place of steps 2–6 and 8 for each group, for comparisons like its Figures
+//      3, 5 and 9.
 //
 // Cost: eigen-decompositions O(n³) per keyframe, one symmetric eigenproblem O(n³) per rotation (the rotation's
 // planes are the eigenspaces of its symmetric part; clusters of nearly equal angles are resolved exactly by a
-// small Hermitian eigenproblem), and per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n).
+// small Hermitian eigenproblem; K−1 rotations in the cumulative form, up to 3 per interval in the paper's), and
+// per frame O(n²·d) in matrix products. Memory O(K·n² + frames·n). With an automatic hierarchy (groups of at
+// most m = 250 items) time is O(N·m·(K·m + frames·d)) and memory O(N·(K·m + frames)) for N individuals: linear
+// in N. The baselines: O(N·(K·log N + frames)) time (graphs, then a few operations per individual and frame).
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -73,11 +84,19 @@ namespace throng::formation {
 
 /// Without a given hierarchy, a group of more individuals than this is split automatically (Options::
 /// auto_group_size, §4.4: the issue's "built automatically by spectral clustering when not given"). Up to it
-/// one flat group stays within the issue's time targets (a flat 2,000 × 1,000 frames: about 12 s on the 2-core
+/// one flat group stays within the issue's time targets (a flat 2,000 × 1,000 frames: about 5 s on the 2-core
 /// machine with OpenBLAS's right kernels); beyond it the O(n³) eigen-analysis and O(n²) memory per keyframe of
-/// one group grow quickly, while clustering keeps every group at most this size. The paper's limit of 60 per
-/// group is a limit of its eigensolver, not of the method, so flat groups far larger are kept flat.
+/// one group grow quickly. The paper's limit of 60 per group is a limit of its eigensolver, not of the method,
+/// so flat groups far larger are kept flat.
 inline constexpr int default_auto_group_size = 2000;
+
+/// The largest group the automatic clustering builds (Options::auto_cluster_size). A hierarchy of groups of m
+/// items costs about N·(a·m² + b·m·frames) for N individuals: the eigen-analyses (a few m³ per group) and the
+/// per-frame products (m² per group and frame). Measured on a 10,000-individual transition × 1,000 frames
+/// (2 cores, shared, CPU time of the whole call): groups of 2,000 (the flat limit) 43 s, 1,000 12 s, 500 5.7 s,
+/// 250 3.3 s, 100 2.8 s. 250 keeps 10,000 individuals well inside 5 s and groups large enough that
+/// neighbourhoods of hundreds move as the spectral method moves them; smaller groups save little more.
+inline constexpr int default_auto_cluster_size = 250;
 
 /// How target eigenvectors are paired with source eigenvectors (§4.2).
 enum class Reordering {
@@ -85,6 +104,39 @@ enum class Reordering {
   greedy,  ///< source j = 2..n, in the source keyframe's own eigenvalue order, in turn takes the free target vector
            ///< with the largest |inner product| (the paper's)
   max_min  ///< maximise the smallest |inner product| over all pairs (exact bottleneck assignment), then the sum
+};
+
+/// What is interpolated between keyframes: the paper's method, or the baselines its figures compare it with.
+/// Every method hits the keyframes exactly, runs per group of a hierarchy (items relative to the group's
+/// barycentre, whose path comes from the parent group), uses the same Catmull-Rom weights (Options::tension,
+/// sharp keyframes) and builds and checks the same keyframe graphs (edits, connectivity: the same job runs with
+/// any method, and the output's graph edges are the same); the baselines do not use the graphs otherwise.
+enum class Interpolation {
+  spectral,  ///< the paper's method: rotating Laplacian eigenbases, coefficients in polar form (steps 1–8 above)
+  linear,    ///< positions interpolated linearly: x(t) = Σ_i c_i(t) x_{k_i}, each individual on the spline of its
+             ///< own keyframe positions — between two keyframes the straight segment, x(t) = (1 − s) x_0 + s x_1
+             ///< with s = c1 + c2 (s = t for tension 1). The paper's "linear interpolation" (Figure 9(a), and
+             ///< Figure 3(a): there the keyframes share a graph and interpolating the coefficients linearly is
+             ///< the same thing). Options::orientation and reordering do not apply (a rotation is not linear).
+  polar      ///< the paper's "simple polar interpolation" (§3.3, Figure 5(a)): each individual's position about
+             ///< the group's barycentre, after the PCA adjustment (Options::orientation), interpolated in polar
+             ///< coordinates without the spectral decomposition — Eq. 4 applied to (x_i, y_i) instead of
+             ///< (α_k, β_k): length and angle each on the spline of the keyframes' values, angles unwrapped the
+             ///< shorter way between consecutive keyframes; 3-D: the direction along the shortest rotations (slerp
+             ///< for two keyframes, §4.5). The barycentre follows the spline linearly and the keyframes' own
+             ///< rotation is restored as in the spectral method (step 7).
+};
+
+/// How the eigenbasis path joins several keyframes (Eq. 5; only the spectral method has it).
+enum class KeyframeProduct {
+  cumulative,  ///< M(t) = M_{n+1} G_{n+1,n+2}^{c2} G_{n,n+1}^{−(c−1+c0)} G_{n−1,n}^{−c−1}: powers of the rotations
+               ///< between consecutive keyframes only (step 5 above)
+  paper        ///< Eq. 5 as printed: M(t) = (R2 R1 R0)^{c2} (R1 R0)^{c1} (R0)^{c0} M_{n−1}, computed as
+               ///< M_{n−1} G_{n−1,n+2}^{c2} G_{n−1,n+1}^{c1} G_{n−1,n}^{c0} with G_{a,b} = M_aᵀ M_b (R1 R0 is the
+               ///< rotation from keyframe n−1 straight to n+1, and so on): powers of products, each the principal
+               ///< power of the direct rotation. It hits every keyframe (t = 0: M_n, t = 1: M_{n+1}) and equals
+               ///< the cumulative form with two keyframes; with more, the interval's path also depends on the
+               ///< rotations to n−1 and n+2 even at tension 0, and swings back where rotations add up past π.
 };
 
 /// How keyframes are brought to a common orientation before their shapes are interpolated (§3.3).
@@ -112,6 +164,8 @@ struct Options {
   double frame_rate_hz = 30.0;   ///< output frames per second; a keyframe interval Δt gets max(1, round(Δt·rate))
                                  ///< equal frames, so every keyframe time is a frame
   double tension = 0.5;          ///< Catmull-Rom τ of Eq. 5, in [0, 1]
+  Interpolation interpolation = Interpolation::spectral;  ///< the method, or one of the paper's baselines
+  KeyframeProduct keyframe_product = KeyframeProduct::cumulative;  ///< Eq. 5's form for the eigenbases
   Reordering reordering = Reordering::greedy;
   OrientationAlignment orientation = OrientationAlignment::pca;
   double isotropy_tolerance = 0.05;  ///< PCA is used only when principal variances differ by more than this
@@ -119,8 +173,10 @@ struct Options {
   bool match_individuals = false;    ///< rows of keyframes k ≥ 1 are not in correspondence with keyframe 0:
                                      ///< match them (minimum summed squared distance after alignment)
   int auto_group_size = default_auto_group_size;  ///< no hierarchy given and more individuals than this
-                                     ///< (≥ 2): one is built by spectral clustering with at most this many items
-                                     ///< per group; 0 = always flat
+                                     ///< (≥ 2): one is built by spectral clustering with at most
+                                     ///< min(auto_group_size, auto_cluster_size) items per group; 0 = always flat
+  int auto_cluster_size = default_auto_cluster_size;  ///< (≥ 2) the largest group of a hierarchy built
+                                     ///< automatically (see default_auto_cluster_size)
   double radius_m = 0.25;            ///< radius written for every individual
   CollisionOptions collision;
 };
@@ -144,12 +200,19 @@ struct AdjacencyEdits {
                                    ///< messages about them; empty: nowhere to name
 };
 
+/// One keyframe formation. Named members with defaults, so later ones (facings: issue 13) add to it without
+/// touching the code that builds keyframes.
 struct Keyframe {
   double time_s = 0.0;
   Eigen::MatrixXd positions;  ///< #individuals by 2 or 3 (metres); row i is individual i
   AdjacencyEdits edits;       ///< this keyframe only, after the problem-wide edits
   std::string where;          ///< where the keyframe was given ("job.yaml:12:5 (keyframes[1])"), put in front of
                               ///< messages about it (its graph, spacing, data); empty: nowhere to name
+  bool sharp = false;         ///< a sharp corner (§4.1): the splines duplicate this keyframe as they duplicate
+                              ///< the endpoints, so every path (positions, eigenbases, coefficients,
+                              ///< orientation) may turn here instead of passing smoothly: velocities change
+                              ///< direction at once, and size too when the two chords differ (as asked: a
+                              ///< marching turn); no effect on the first and last keyframes
 };
 
 /// A group of the hierarchy (§4.4). The root holds everyone; each individual is in exactly one group.

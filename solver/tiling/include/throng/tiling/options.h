@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -83,6 +84,11 @@ struct SearchOptions {
   /// dropped (search.cpp).
   std::size_t stale_sweeps = 3;
   std::size_t max_steps = 400000;     ///< cap on candidate placements tried in all; reaching it ends the search
+  /// On a tile periodic on every axis: a chain whose phase 2 has not closed every loop within restart_steps
+  /// placements starts again from an empty tile with the next seed of its stream, at most `restarts` times; the
+  /// attempt with the fewest dangling ends is kept (chain.cpp). 0 restarts: one attempt of max_steps.
+  std::size_t restart_steps = 20000;
+  std::size_t restarts = 8;
 };
 
 /// The preference function F = Π exp(−f_i / σ_i) (Eq. 7) over an instance's position (its centroid), direction
@@ -119,6 +125,40 @@ struct IndexOptions {
   double cell_s = 0.5;
 };
 
+/// A part of the region with its own density (an axis-aligned box in the tile's coordinates).
+struct DensityZone {
+  Eigen::Vector2d min{0, 0};
+  Eigen::Vector2d max{0, 0};
+  double per_m2 = 0.0;  ///< characters per m² of the zone's area (free area when DensityOptions::free_area)
+};
+
+/// Density per area (presence.h, density.h): how many characters are inside an area at every time of the
+/// horizon. The count at time t is the number of characters whose position at t lies in the area (characters
+/// present by the region rule: a chain before its first entry or after its last exit is absent); the target
+/// is per_m2 × area. Measured continuously over bins of `bin_s` seconds (the mean count in the bin) and
+/// reported per window of `report_window_s` (mean, lowest and highest bin); a run meets its density when every
+/// reported window's mean lies within ±tolerance of the target (relative).
+struct DensityOptions {
+  /// Characters per m² over the whole region (its box area, or free area); 0: no density for the region.
+  double per_m2 = 0.0;
+  /// Parts of the region with their own density, controlled and reported besides the region's own (if any).
+  std::vector<DensityZone> zones;
+  /// Areas exclude what obstacles cover (sampled on a raster of `area_cell_m`, at each bin's middle time for
+  /// moving obstacles); false: the box area.
+  bool free_area = false;
+  double area_cell_m = 0.1;
+  double tolerance = 0.1;        ///< relative, on each reported window's mean
+  double bin_s = 2.0;            ///< control and measurement bins
+  double report_window_s = 60.0; ///< reported windows (the run's windows when it is windowed)
+  /// Correction rounds after phase 2 (chain.cpp): over-full bins lose whole removable groups of patches,
+  /// under-full bins are sampled again (phase 1 then phase 2). 0: phase 1's cap alone.
+  std::size_t rounds = 4;
+  /// Walking speed (m/s) at which a dangling end is projected to the region's side (presence.h).
+  double projection_speed_mps = 1.3;
+
+  [[nodiscard]] bool enabled() const noexcept { return per_m2 > 0 || !zones.empty(); }
+};
+
 struct Options {
   DeformationLimits limits;
   MatchThresholds match;
@@ -132,14 +172,18 @@ struct Options {
   /// fragments) than this; 0: no limit (phase 1 fills until i_max proposals in a row fail). The paper's
   /// Figure 7 rows differ by this density.
   std::size_t characters = 0;
+  /// Density per area, met at every time within a tolerance (see DensityOptions); off by default. Both this and
+  /// `characters` may be given: both caps then hold in phase 1.
+  DensityOptions density;
   /// Obstacle tests sample each path segment at points at most obstacle_step_m apart in space and
   /// obstacle_step_s apart in time, and at every sample (moving obstacles are tested at the sample's time; on a
   /// periodic time axis at that time wrapped into the region).
   double obstacle_step_m = 0.1;
   double obstacle_step_s = 0.05;
   /// Multi-start: independent chains, chain c seeded derive_seed(seed, c), run on threads and MPI ranks
-  /// (chain c on rank c mod size). The best is kept: fewest dangling ends, then the density rule (closest to
-  /// `characters` when set, else most characters), then the best mean preference, then the lowest chain index.
+  /// (chain c on rank c mod size). The best is kept: fewest dangling ends, then the density per area (bins
+  /// closest to their band, ChainReport::density_distance), then the character rule (closest to `characters`
+  /// when set, else most characters), then the best mean preference, then the lowest chain index.
   std::size_t chains = 2;
   std::uint64_t seed = 1;
 };

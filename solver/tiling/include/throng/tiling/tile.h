@@ -1,12 +1,12 @@
 // The tiler: fills a space-time region with deformable motion patches so that no entry or exit is left
-// dangling (seed 004 §5, METHODS.md §4).
+// dangling (seed 004 §5, METHODS.md §4). A long horizon is tiled window by window by windowed.h.
 //
 //   tile()  validates the library, keyframes and options; finds the patch types that can ever be used inside
 //           the region (pose classes that no end of the opposite kind ever has make a type unusable: when none
 //           is usable, a NumericalError says why, before any search); precomputes each type's deformation
 //           system; then runs `chains` independent chains (threads × MPI ranks), each:
 //             keyframes (their characters continued by the phase-2 search while the region is empty) →
-//             phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2),
+//             phase 1 (annealing, Algorithm 1, Eq. 6) → phase 2 (search, Algorithm 2) → density rounds,
 //           and keeps the best chain (options.h: Options::chains). Every rank returns the same tiling.
 //
 // Decisions where the paper is unclear (see also options.h, deformation.h):
@@ -21,16 +21,28 @@
 //   candidate so that its matching end lands exactly on the dangling end, tries it unjittered and then jittered
 //   (the jitter range grows with the attempt), and requires every attempt not to raise the dangling count.
 //   History: a removed instance's (type, fragment, anchor end) is never proposed again at that end.
-//   Our additions (search.cpp): bridges, patches fitted between d and another dangling end to join both at once,
-//   tried before removing d's patch (before the candidates on a tile periodic on every axis, where no end can
-//   leave by a side); and on such a tile, after sweeps that lower nothing, the smallest connected group of
-//   patches holding a dangling end is dropped whole (at most half the tiling; never a keyframe).
+//   Our additions (search.cpp, bridges.h): bridges, patches fitted between d and another dangling end to join
+//   both at once, tried before removing d's patch (before the candidates on a tile periodic on every axis, where
+//   no end can leave by a side); and on such a tile, after sweeps that lower nothing, the smallest connected
+//   group of patches holding a dangling end is dropped whole (at most half the tiling; never a keyframe).
+// - Loops (a tile periodic on x, y and t, where every character must close a loop; bridges.h, closure.cpp):
+//   only exits are continued, each first by a planned way to a near dangling entry (a beam search over the
+//   single-character patches, then a bridge), then by two-patch bridges, then by the candidates in order of how
+//   well they keep to schedule for an entry; with a density per area phase 1 starts no more chains than the
+//   target count and phase 2 raises no bin above (1 + tolerance) × target; a chain that has not closed every
+//   loop within SearchOptions::restart_steps placements starts again with the next seed of its stream.
+//   Perfect for 20 seeds of 20 on 10 m × 10 m × 20 s at 0.1 characters/m² (bench/tiling BM_LoopSeeds).
 // - Validity: no two character or prop capsules of different instances closer than the sum of their radii at
 //   any time (exact closest approach of the linearly interpolated paths, continuous in time), except the two
 //   fragments a connection joins (the same character); no capsule closer to an obstacle than its radius at the
 //   sampled points (Options::obstacle_step_m); deformation within the limits; times strictly increasing.
 // - Periodic axes: every distance, match and collision uses the nearest image; instance translations and time
 //   shifts are kept inside the tile.
+// - Density per area (options.h DensityOptions; the paper sets density by counts of patches or characters):
+//   phase 1 refuses a proposal that would raise the presence of an area in a time bin above its target,
+//   counting what the patch's open ends will become when phase 2 continues them (projected straight on to the
+//   region's side, presence.h); after phase 2, correction rounds drop whole groups of patches from over-full
+//   bins and sample under-full ones again (density_control.cpp). measure_density (density.h) reports it.
 #pragma once
 
 #include <throng/core/progress.h>
@@ -78,6 +90,12 @@ struct ChainReport {
   double phase1_seconds = 0;
   double phase2_seconds = 0;
   bool search_capped = false;       ///< phase 2 stopped at SearchOptions::max_steps
+  std::size_t attempts = 1;         ///< attempts made (more than one only on a tile periodic on every axis)
+  std::size_t density_rounds = 0;   ///< correction rounds run for the density per area (options.h)
+  std::size_t density_removed = 0;  ///< instances those rounds dropped from over-full bins
+  /// How far the controlled density bins lie outside their tolerance band, in all, relative to the sum of their
+  /// targets (0: every bin within its band; 0 without a density).
+  double density_distance = 0;
 };
 
 struct TilingReport {
