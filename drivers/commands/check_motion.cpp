@@ -1,8 +1,7 @@
 // throng check-motion CROWD.h5 [--reference IN.h5] [limits]: the independent motion checker (solver/check):
 // speeds, accelerations, turning rates, displacement from the reference, contacts; a JSON (or key: value)
 // report; exit 5 when a limit is broken. docs/commands/check-motion.md is the README section.
-// Facings: none in today's files; when the crowd file carries them, pass them to check::measure as the
-// optional FacingSeries.
+// Facings: the crowd file's orientations when it carries them (yaw of the forward axis +x), else none.
 #include <throng/check/motion_check.h>
 #include <throng/core/errors.h>
 
@@ -69,7 +68,8 @@ class CheckMotionCommand final : public Command {
     std::optional<CrowdFile> reference;
     if (!reference_.empty()) reference = read_crowd_file(reference_);
     const CrowdMotion* ref = reference ? &reference->motion : nullptr;
-    const check::Statistics s = check::measure(crowd.motion, crowd.scene.obstacles, settings_, ref);
+    const std::optional<check::FacingSeries> facing = check::facings_of(crowd.motion);
+    const check::Statistics s = check::measure(crowd.motion, crowd.scene.obstacles, settings_, ref, facing ? &*facing : nullptr);
     check::Limits limits;
     std::optional<check::Statistics> input;
     if (reference) {

@@ -110,7 +110,7 @@ TEST_CASE("a surging gait breaks acceleration_p99 only") {
   CHECK(broken(s) == Names{"acceleration_p99"});
 }
 
-TEST_CASE("one sharp turn breaks max_turning_rate only; a weave breaks turning_rate_p99 only") {
+TEST_CASE("one sharp turn breaks max_turning_rate only, a weave turning_rate_p99 only") {
   SECTION("a 0.7 rad turn in one frame at 0.6 m/s: 7 rad/s > 2π, 4.1 m/s² < 8") {
     const check::Statistics s = measure(with_velocities([](std::size_t f) {
       return Eigen::Vector2d(0.6 * (f < 100 ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(std::cos(0.7), std::sin(0.7))));
@@ -155,6 +155,28 @@ TEST_CASE("a facing that snaps round breaks max_facing_rate only") {
   }
   const check::FacingSeries short_series{std::vector<double>(3)};
   CHECK_THROWS_AS(measure(c, {}, nullptr, &short_series), InputError);
+}
+
+TEST_CASE("a crowd's own orientations are its facings: the yaw of the forward axis, none where absent") {
+  CrowdMotion c = straight_walkers();
+  CHECK_FALSE(check::facings_of(c).has_value());
+  c.orientations.assign(T * 2 * 4, 0.0);
+  for (std::size_t f = 0; f < T; ++f) {
+    for (std::size_t a = 0; a < 2; ++a) {
+      // Agent 0 turns about +z at 0.2 rad per frame (2 rad/s), agent 1 faces along −y (yaw −π/2).
+      const double yaw = a == 0 ? 0.2 * static_cast<double>(f) : -std::numbers::pi / 2;
+      c.orientation(f, a) = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    }
+  }
+  c.position(7, 1) = Eigen::Vector3d::Constant(std::nan(""));  // agent 1 absent at frame 7
+  const std::optional<check::FacingSeries> facing = check::facings_of(c);
+  REQUIRE(facing.has_value());
+  REQUIRE(facing->yaw.size() == T * 2);
+  CHECK(facing->yaw[3 * 2] == Approx(0.6).epsilon(1e-12));
+  CHECK(facing->yaw[3 * 2 + 1] == Approx(-std::numbers::pi / 2).epsilon(1e-12));
+  CHECK(std::isnan(facing->yaw[7 * 2 + 1]));
+  // Through measure: the turn of agent 0 is its facing rate (wrapped across ±π).
+  CHECK(measure(c, {}, nullptr, &*facing).facing_rate.max == Approx(0.2 / dt).epsilon(1e-9));
 }
 
 TEST_CASE("a detour from the reference breaks max_displacement only") {

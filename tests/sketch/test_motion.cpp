@@ -99,7 +99,7 @@ TEST_CASE("filtered, every step is the walking velocity relaxed toward Eq. 21's 
   CHECK(largest_change > 0.5 * o.max_acceleration_m_s2);  // the bound is reached: it is what acts
 }
 
-TEST_CASE("the paper's rule jitters where forces swing; the filter keeps the paper experiment's look without it") {
+TEST_CASE("the paper's rule jitters where forces swing, the filter keeps the paper experiment's look without it") {
   // The same experiment with the paper's rule and with the default filter. Jitter: agent-frames accelerating
   // above 8 m/s² (a sprinter's start). Look: the crowd's width across the course in the wide part, the spread
   // of nearest-neighbour distances in the irregular part, and the centroid's speed in the slow and fast parts.

@@ -130,7 +130,7 @@ TEST_CASE("the guard gives the same bits with one thread and with two") {
   CHECK(one.crowd.times == two.crowd.times);
 }
 
-TEST_CASE("the edit library's output, guarded, is within the checker's limits; unguarded it is not") {
+TEST_CASE("the edit library's output, guarded, is within the checker's limits, unguarded it is not") {
   // A marching group whose last 3 s are dragged 8 m sideways (the battlefield edit in small): the paths between
   // stretch (faster walkers) and bend where the drag starts. This is where `throng edit` should call the guard
   // (docs: the coordinator wires it into the edit command; the test shows the library output it must take).

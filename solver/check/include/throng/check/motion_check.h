@@ -53,6 +53,10 @@ struct FacingSeries {
   std::vector<double> yaw;
 };
 
+/// The facings a crowd carries (CrowdMotion::orientations): the yaw of each present agent's forward axis (+x
+/// rotated by its orientation), NaN where absent; none when the crowd carries no orientations.
+[[nodiscard]] std::optional<FacingSeries> facings_of(const CrowdMotion& crowd);
+
 /// How to measure.
 struct Settings {
   double heading_min_speed = 0.5;    ///< m/s: turning rate only where both neighbouring speeds reach this
