@@ -96,7 +96,7 @@ class CollideCommand final : public Command {
     app.add_option("--push-fraction", push_fraction_, "A push separates a pair by this fraction of its clearance");
     app.add_option("--max-iterations", max_iterations_, "Solves at most");
     app.add_option("--spread", spread_, "Frames over which a push fades along a trajectory");
-    app.add_option("--obstacle-pull", obstacle_pull_, "sideways | nearest")->check(CLI::IsMember({"sideways", "nearest"}));
+    app.add_option("--obstacle-pull", obstacle_pull_, "back | sideways | nearest")->check(CLI::IsMember({"back", "sideways", "nearest"}));
     app.add_flag("--no-pin-ends", no_pin_ends_, "Let the first and last frames move too");
     app.add_option("--fixed-agents", fixed_agents_, "Ids of agents that must not move")->delimiter(',');
     app.add_flag("--allow-remaining", allow_remaining_, "Collisions left at the end are a warning, not exit 5");

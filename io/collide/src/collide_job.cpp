@@ -12,14 +12,21 @@ void bind(OptionBinder& b, CollideJob& job) {
   b.field("margin", o.margin, Range::non_negative());
   b.field("push_fraction", o.push_fraction, Range{0.0, 1.0, true, false});
   b.field("max_iterations", o.max_iterations, Range{1, 1e9});
+  b.field("smoothing_time", o.smoothing_time, Range::non_negative());
+  b.field("smoothing_weight", o.smoothing_weight, Range::positive());
+  b.field("catch_up_time", o.catch_up_time, Range::non_negative());
   b.field("spread", o.spread, Range{1.0, 1e6});
   b.field("velocity_weight", o.velocity_weight, Range::non_negative());
   b.choice("obstacle_pull", o.obstacle_pull,
-           {{"sideways", collide::ObstaclePull::sideways}, {"nearest", collide::ObstaclePull::nearest}});
+           {{"back", collide::ObstaclePull::back}, {"sideways", collide::ObstaclePull::sideways},
+            {"nearest", collide::ObstaclePull::nearest}});
   b.choice("pair_push", o.pair_push, {{"sideways", collide::PairPush::sideways}, {"apart", collide::PairPush::apart}});
+  b.choice("push_size", o.push_size, {{"full", collide::PushSize::full}, {"fraction", collide::PushSize::fraction}});
   b.field("pin_ends", o.pin_ends);
   b.field("min_feature_length", o.min_feature_length, Range::positive());
-  b.field("max_displacement", o.max_displacement, Range::positive());
+  b.field("max_displacement", o.max_displacement, Range::non_negative());
+  b.field("max_speed_ratio", o.max_speed_ratio, Range::non_negative());
+  b.field("max_acceleration", o.max_acceleration, Range::non_negative());
   b.field("contact_patience", o.contact_patience, Range{1, 1e9});
   b.field("stall_iterations", o.stall_iterations, Range{1, 1e9});
   b.field("allow_remaining", job.allow_remaining);

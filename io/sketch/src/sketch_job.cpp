@@ -43,6 +43,8 @@ void bind(OptionBinder& b, Options& o) {
     w.field("obstacle", o.obstacle_weight, Range::non_negative());
   });
   b.field("time_step", o.time_step_s, Range::positive());
+  b.field("direction_filter", o.direction_filter_s, Range::non_negative());
+  b.field("max_acceleration", o.max_acceleration_m_s2, Range::non_negative());
   b.field("output_rate", o.output_rate_hz, Range::positive());
   b.field("duration", o.duration_s, Range::non_negative());
   b.field("max_duration", o.max_duration_s, Range::positive());

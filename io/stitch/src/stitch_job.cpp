@@ -38,6 +38,14 @@ void bind(OptionBinder& b, stitch::Options& o) {
     f.field("degenerate_ratio", o.features.degenerate_ratio, Range{0.0, 1.0, false, true});
   });
   b.section("solver", [&](OptionBinder& s) { bind_solver(s, o.solver); });
+  b.section("guard", [&](OptionBinder& g) {
+    g.field("enabled", o.guard.enabled);
+    g.field("max_speed_ratio", o.guard.max_speed_ratio, Range::positive());
+    g.field("max_acceleration", o.guard.max_acceleration, Range::positive());
+    g.field("ramp_time", o.guard.ramp_time, Range::positive());
+    g.field("smoothing_time", o.guard.smoothing_time, Range::positive());
+    g.field("max_window_time", o.guard.max_window_time, Range::positive());
+  });
 }
 
 // Maps [0, 1] of one joint into its share of the whole.

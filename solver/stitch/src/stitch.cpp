@@ -5,6 +5,7 @@
 #include <throng/core/parallel.h>
 #include <throng/linalg/spd_solver.h>
 #include <throng/stitch/stitch.h>
+#include <throng/timewarp/guard.h>
 #include <throng/timewarp/spline.h>
 
 #include <Eigen/Geometry>
@@ -50,6 +51,7 @@ Feature averaged(const Feature& a, const Feature& b) {
 }  // namespace
 
 void validate(const Options& o) {
+  timewarp::validate(o.guard, "guard");
   if (o.sample_step == 0) throw ConfigError("sample_step is 0: expected a positive number of frames");
   if (!(std::isfinite(o.blend_window) && o.blend_window >= 0)) {
     throw ConfigError("blend_window " + detail::number(o.blend_window) + ": expected a duration ≥ 0 in seconds (0: automatic)");
@@ -333,6 +335,22 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
       }
     }
   });
+  // Plausibility: the guard, with the clips themselves as the source (stitch.h "Plausibility").
+  report_to.update(0.95, "guarding speed and acceleration");
+  timewarp::Source source;
+  source.max_speed = std::max(timewarp::fastest_speed(first), timewarp::fastest_speed(second));
+  const std::vector<double> first_acceleration = timewarp::accelerations(first), second_acceleration = timewarp::accelerations(second);
+  source.acceleration.assign(T * n, 0.0);
+  for (std::size_t F = 0; F < T; ++F) {
+    for (std::size_t j = 0; j < n; ++j) {
+      source.acceleration[F * n + j] = F < J   ? first_acceleration[F * first.agent_count() + pa.agents[j]]
+                                       : F > J ? second_acceleration[(F - J) * second.agent_count() + partner[j]]
+                                               : 0.0;
+    }
+  }
+  timewarp::GuardResult guarded = timewarp::guard(out, source, options.guard);
+  out = std::move(guarded.crowd);
+  report.guard = guarded.report;
   report_to.update(1.0, "stitched");
   return result;
 }
