@@ -16,8 +16,11 @@
 //  * parts/local_drag/halo:H/vertices_per_part:V   the same drag at --scale_parts_agents (5,000) agents × 300
 //                                        frames for each part size of --scale_part_sizes: the trade between a
 //                                        drag's cost and the jump at the region's edge that picks the defaults.
-//  * size/global_drag/B/agents:N         Editor on backend B (eigen, petsc): seconds per drag after precompute
-//                                        (precompute seconds, memory, factor entries, bytes a drag must read).
+//  * size/global_drag/B/agents:N         Editor with B = eigen or petsc (the direct method on that backend) or
+//                                        iterative (two-level CG, 2 threads): seconds per drag after precompute
+//                                        (precompute seconds, memory, factor entries, bytes a drag must read;
+//                                        iterative: CG iterations of the last drag). Target: iterative ≤ 1 s at
+//                                        10,000 agents.
 //  * frames/local_drag/halo:1/frames:F,  1,000 agents × F frames.
 //    frames/global_drag/petsc/frames:F
 //  * strong/<local_drag|global_drag/petsc>/threads:T   fixed size (--scale_strong_agents × 300 frames) on T
@@ -107,7 +110,9 @@ Scene scene(int agents, int frames, const std::string& backend) {
   const int cols = agents <= 1000 ? 40 : agents <= 2000 ? 50 : 100;
   const int rows = std::max(1, agents / cols);
   Scene s{test::marching_grid(rows, cols, static_cast<std::size_t>(frames), 1.0, 1.2, 0.1, 0.1, 0.2), {}, {}};
-  s.options.solver.backend = backend;
+  // "eigen" and "petsc": the direct method on that backend; "iterative": two-level CG (edit's iterative_steps.h).
+  s.options.solver.backend = backend == "petsc" ? "petsc" : "eigen";
+  s.options.solver.method = backend == "iterative" ? "iterative" : "direct";
   edit::Drag head, tail, group;
   head.selection.last_frame = 0;
   tail.selection.first_frame = -1;
@@ -194,7 +199,8 @@ void global_drag(benchmark::State& state, int agents, int frames, const std::str
     state.counters["factor_entries"] = r.factor_nonzeros;
     // A direct drag is two triangular solve pairs (steps 1 and 2): each reads its factor twice, ≥ 12 bytes an
     // entry (8 value + 4 index; complex factors hold 16-byte values, so this is a lower bound). 0 for petsc.
-    state.counters["drag_bytes_GB"] = 2.0 * r.factor_nonzeros * 12.0 / 1e9;
+    state.counters["drag_bytes_GB"] = backend == "iterative" ? 0.0 : 2.0 * r.factor_nonzeros * 12.0 / 1e9;
+    if (backend == "iterative") state.counters["iterations"] = r.iterations;
     state.SetLabel(r.factorization);
   } catch (const Error& e) {
     state.SkipWithError(e.what());
@@ -242,6 +248,7 @@ void register_benchmarks(const Sweep& sweep) {
     if (agents <= sweep.eigen_max) {
       add("size/global_drag/eigen/agents:" + std::to_string(agents), 3, global_drag, agents, 300, "eigen", 1);
     }
+    add("size/global_drag/iterative/agents:" + std::to_string(agents), 10, global_drag, agents, 300, "iterative", 2);
     if (petsc) add("size/global_drag/petsc/agents:" + std::to_string(agents), 2, global_drag, agents, 300, "petsc", 1);
   }
   // Frames: 1,000 agents × F frames.

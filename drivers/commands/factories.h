@@ -20,6 +20,7 @@ std::unique_ptr<Command> make_stitch_command();
 std::unique_ptr<Command> make_timewarp_command();
 std::unique_ptr<Command> make_tile_command();
 std::unique_ptr<Command> make_check_tiling_command();
+std::unique_ptr<Command> make_check_motion_command();
 /// `throng run`: runs the other commands as steps (they must outlive it).
 std::unique_ptr<Command> make_run_command(std::vector<Command*> commands);
 

@@ -18,6 +18,7 @@ std::vector<std::unique_ptr<Command>> all_commands() {
   c.push_back(make_timewarp_command());
   c.push_back(make_tile_command());
   c.push_back(make_check_tiling_command());
+  c.push_back(make_check_motion_command());
   c.push_back(make_export_command());
   c.push_back(make_info_command());
   c.push_back(make_plot_command());

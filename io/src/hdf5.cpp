@@ -512,6 +512,59 @@ Array<std::int32_t> Group::read_int32(const std::string& name, int expected_rank
   return read_numeric<std::int32_t>(*this, context_of(context_), name, expected_rank, H5T_NATIVE_INT32, true);
 }
 
+Array<double> Group::read_compound_member(const std::string& name, const std::string& member) const {
+  ReadContext& context = context_of(context_);
+  if (!has(name)) throw InputError(where(name) + ": missing dataset");
+  Handle set(H5Dopen2(id(), name.c_str(), context.dataset_access.id()));
+  if (!set.valid()) throw InputError(where(name) + ": cannot open dataset (" + hdf5_reason() + ")");
+  Handle type(H5Dget_type(set.id()));
+  if (H5Tget_class(type.id()) != H5T_COMPOUND) throw InputError(where(name) + ": is not a compound dataset (a table of named columns)");
+  const int index = H5Tget_member_index(type.id(), member.c_str());
+  if (index < 0) throw InputError(where(name) + ": has no member '" + member + "'");
+  Handle member_type(H5Tget_member_type(type.id(), static_cast<unsigned>(index)));
+  const H5T_class_t cls = H5Tget_class(member_type.id());
+  if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": member '" + member + "' is not numeric");
+  const std::size_t member_size = H5Tget_size(member_type.id());
+  if (member_size == 0 || member_size > max_number_size) {
+    throw InputError(where(name) + ": member '" + member + "' has " + std::to_string(member_size) + "-byte numbers");
+  }
+  Handle space(H5Dget_space(set.id()));
+  const Extent e = extent_of(space.id(), where(name));
+  if (e.dims.size() != 1) throw InputError(where(name) + ": has rank " + std::to_string(e.dims.size()) + ", expected 1 (a table of rows)");
+  check_dataset_storage(set.id(), where(name), e, H5Tget_size(type.id()), context);
+  Array<double> out;
+  out.shape = e.dims;
+  context.budget.charge(checked_product(e.count, sizeof(double)).value_or(UINT64_MAX), where(name) + " member " + member,
+                        shape_text(e.dims) + " × 8 bytes");
+  out.values.resize(e.count);
+  Handle memory(H5Tcreate(H5T_COMPOUND, sizeof(double)));
+  if (!memory.valid() || H5Tinsert(memory.id(), member.c_str(), 0, H5T_NATIVE_DOUBLE) < 0) {
+    throw InputError(where(name) + ": cannot describe member '" + member + "' (" + hdf5_reason() + ")");
+  }
+  if (e.count > 0 && H5Dread(set.id(), memory.id(), H5S_ALL, H5S_ALL, context.transfer.id(), out.values.data()) < 0) {
+    throw InputError(where(name) + ": cannot read member '" + member + "' (" + hdf5_reason() + "); truncated or damaged file?");
+  }
+  return out;
+}
+
+std::vector<std::string> Group::compound_members(const std::string& name) const {
+  ReadContext& context = context_of(context_);
+  if (!has(name)) return {};
+  Handle set(H5Dopen2(id(), name.c_str(), context.dataset_access.id()));
+  if (!set.valid()) return {};
+  Handle type(H5Dget_type(set.id()));
+  if (H5Tget_class(type.id()) != H5T_COMPOUND) return {};
+  std::vector<std::string> out;
+  const int count = H5Tget_nmembers(type.id());
+  for (int i = 0; i < count && i < 1024; ++i) {
+    char* member = H5Tget_member_name(type.id(), static_cast<unsigned>(i));
+    if (!member) continue;
+    out.emplace_back(member);
+    H5free_memory(member);
+  }
+  return out;
+}
+
 std::vector<std::string> Group::read_strings(const std::string& name) const {
   if (!has(name)) throw InputError(where(name) + ": missing dataset");
   ReadContext& context = context_of(context_);
@@ -615,6 +668,15 @@ std::optional<double> Group::double_attribute(const std::string& name) const {
     throw InputError(where() + " attribute " + name + ": holds " + std::to_string(v.size()) + " values, expected one number");
   }
   return v.front();
+}
+
+std::optional<double> Group::double_attribute_on(const std::string& object, const std::string& name) const {
+  if (!has(object)) throw InputError(where(object) + ": missing");
+  // H5Oopen gives a group or dataset identifier; the object seen as a Group shares this file's read context.
+  Handle handle(H5Oopen(id(), object.c_str(), H5P_DEFAULT));
+  if (!handle.valid()) throw InputError(where(object) + ": cannot open (" + hdf5_reason() + ")");
+  const Group o(std::move(handle), file_, (path_ == "/" ? "" : path_) + "/" + object, context_);
+  return o.double_attribute(name);
 }
 
 void Group::set_attribute_on(const std::string& object, const std::string& name, const std::string& value) const {

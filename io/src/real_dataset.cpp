@@ -5,6 +5,9 @@
 
 #include <pugixml.hpp>
 
+#include <map>
+#include <regex>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -140,50 +143,94 @@ Scene read_map(const std::filesystem::path& path, double wall_thickness, MemoryB
   return scene;
 }
 
-}  // namespace
+// The recordings whose content throng knows, identified by what the rows hold (never by the folder's name: the
+// collections ship the same file as `hotel/`, `seq_hotel/`, `ETH/seq_hotel/` ...): number of rows, distinct
+// agents, first and last frame number. Measured on OpenTraj's obsmat.txt files (crowdbotp/OpenTraj@97ec1d5e1b57,
+// the origin of data/real); a file edited in any way is not one of them any more and needs --fps and --credit.
+struct Fingerprint {
+  const char* name;
+  std::uint64_t rows, agents;
+  std::int64_t first_frame, last_frame;
+  double video_fps;
+  bool eth;  ///< ETH/BIWI (else UCY)
+};
+constexpr Fingerprint known_recordings[] = {
+    {"ETH/BIWI eth", 8908, 360, 780, 12381, 15.0, true},
+    {"ETH/BIWI hotel", 6544, 390, 1, 18061, 25.0, true},
+    {"UCY zara01", 5024, 148, 1, 9011, 25.0, false},
+    {"UCY zara02", 9537, 204, 7, 10517, 25.0, false},
+    {"UCY students03", 21846, 428, 1, 5391, 25.0, false},
+};
 
-double known_video_fps(const std::string& folder_name) {
-  if (folder_name == "eth") return 15.0;
-  for (const char* name : {"hotel", "zara01", "zara02", "zara03", "univ", "students"}) {
-    if (folder_name.rfind(name, 0) == 0 || folder_name.find(std::string("_") + name) != std::string::npos) return 25.0;
-  }
-  return 0.0;
-}
-
-std::string dataset_credit(const std::string& folder_name) {
+std::string credit_of(const Fingerprint& f) {
   const std::string opentraj = " Collected and converted to metres by the OpenTraj project (crowdbotp/OpenTraj).";
-  if (folder_name == "eth" || folder_name == "hotel") {
+  if (f.eth) {
     return "ETH/BIWI Walking Pedestrians: S. Pellegrini, A. Ess, K. Schindler, L. Van Gool, \"You'll never walk alone: "
            "modeling social behavior for multi-target tracking\", ICCV 2009." + opentraj;
   }
-  if (known_video_fps(folder_name) == 0.0) return {};
   return "UCY Crowds by Example: A. Lerner, Y. Chrysanthou, D. Lischinski, \"Crowds by example\", Computer Graphics "
          "Forum 26(3), 2007." + opentraj;
+}
+
+const Fingerprint* identify(const std::vector<Row>& rows, std::size_t agents, std::int64_t first, std::int64_t last) {
+  for (const Fingerprint& f : known_recordings) {
+    if (f.rows == rows.size() && f.agents == agents && f.first_frame == first && f.last_frame == last) return &f;
+  }
+  return nullptr;
+}
+
+// ETH's info.txt states the annotation's time step ("... that is with a timestep of 0.4 seconds"): with the
+// frame numbers' usual step (the most common gap between an agent's consecutive rows) it gives the video rate.
+// 0 when there is no info.txt or it does not say.
+double video_fps_from_info(const std::filesystem::path& info, const std::vector<Row>& rows, MemoryBudget& budget) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(info, ec)) return 0.0;
+  const std::string text = read_text_file(info, budget, "info.txt (a text file)");
+  static const std::regex step(R"(time\s?step\s+of\s+([0-9]+(\.[0-9]+)?)\s*s)", std::regex::icase);
+  std::smatch match;
+  if (!std::regex_search(text, match, step)) return 0.0;
+  const double seconds = std::stod(match[1].str());
+  std::unordered_map<std::int64_t, std::int64_t> last_frame;
+  std::map<std::int64_t, std::size_t> gaps;
+  for (const Row& r : rows) {
+    const auto it = last_frame.find(r.id);
+    if (it != last_frame.end() && r.frame > it->second) ++gaps[r.frame - it->second];
+    last_frame[r.id] = r.frame;
+  }
+  if (gaps.empty() || !(seconds > 0)) return 0.0;
+  const auto usual = std::max_element(gaps.begin(), gaps.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  return static_cast<double>(usual->first) / seconds;
+}
+
+}  // namespace
+
+Scene read_obstacle_map(const std::filesystem::path& map_xml, double wall_thickness, const ReadLimits& limits) {
+  MemoryBudget budget(limits);
+  return read_map(map_xml, wall_thickness, budget);
 }
 
 CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options,
                               const ReadLimits& limits) {
   std::error_code ec;
   MemoryBudget budget(limits);
-  const bool is_folder = std::filesystem::is_directory(folder_or_obsmat, ec);
-  const std::filesystem::path folder = is_folder ? folder_or_obsmat : folder_or_obsmat.parent_path();
-  const std::filesystem::path obsmat = is_folder ? folder / "obsmat.txt" : folder_or_obsmat;
   if (!std::filesystem::exists(folder_or_obsmat, ec)) throw IoError(folder_or_obsmat.string() + ": no such file or folder");
+  // Any spelling: "obsmat.txt" from inside the folder (its parent path is empty: the working folder), "data/hotel/",
+  // ".", "./obsmat.txt". Nothing here depends on the folder's name.
+  const bool is_folder = std::filesystem::is_directory(folder_or_obsmat, ec);
+  std::filesystem::path folder = is_folder ? folder_or_obsmat : folder_or_obsmat.parent_path();
+  if (folder.empty()) folder = ".";
+  const std::filesystem::path obsmat = is_folder ? folder / "obsmat.txt" : folder_or_obsmat;
   if (!std::filesystem::exists(obsmat, ec)) throw IoError(obsmat.string() + ": no such file (expected a dataset folder holding obsmat.txt)");
-  const std::string name = std::filesystem::absolute(folder).lexically_normal().filename().string();
 
-  double fps = options.video_fps;
-  if (!(fps >= 0.0) || !std::isfinite(fps)) {
+  const double given_fps = options.video_fps;
+  if (!(given_fps >= 0.0) || !std::isfinite(given_fps)) {
     std::ostringstream m;
-    m << "video frame rate (--fps) = " << fps << ", expected a finite number > 0 (or 0: the known rate of the dataset)";
+    m << "video frame rate (--fps) = " << given_fps << ", expected a finite number > 0 (or 0: the rate the data states)";
     throw ConfigError(m.str());
-  }
-  if (fps == 0.0) fps = known_video_fps(name);
-  if (!(fps > 0.0)) {
-    throw ConfigError("cannot tell the video frame rate of dataset folder '" + name + "': give it with --fps");
   }
   if (!(options.agent_radius >= 0) || !(options.wall_thickness >= 0)) throw ConfigError("radius and wall thickness must be ≥ 0");
 
+  // The rows first: a file that is not an obsmat table says so before anything asks for its frame rate.
   const std::vector<Row> rows = read_obsmat(obsmat, budget);
 
   // Frames: the annotated video frames, in order (see the header for why not a regular grid).
@@ -197,14 +244,39 @@ CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, con
   for (const Row& r : rows) ids.push_back(r.id);
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  std::unordered_map<std::int64_t, std::size_t> column;
-  for (std::size_t n = 0; n < ids.size(); ++n) column[ids[n]] = n;
   const std::size_t N = ids.size();
+
   // A dense frames × agents array for positions and velocities (48 bytes per entry): sparse rows (every row a
   // new frame and a new agent) ask for far more than the file's size.
   const auto entries = checked_product(T, N);
   budget.charge(entries ? checked_product(*entries, 6 * sizeof(double)).value_or(UINT64_MAX) : UINT64_MAX, obsmat.string(),
                 std::to_string(T) + " frames × " + std::to_string(N) + " agents × 48 bytes");
+  // Every file beside it read and checked before the frame rate is asked for.
+  std::vector<std::vector<std::int64_t>> groups;
+  const auto groups_path = folder / "groups.txt";
+  if (options.groups && std::filesystem::exists(groups_path, ec)) groups = read_groups(groups_path, budget);
+  Scene scene;
+  const auto map_path = folder / "map.xml";
+  if (options.map && std::filesystem::exists(map_path, ec)) scene = read_map(map_path, options.wall_thickness, budget);
+
+  const Fingerprint* known = identify(rows, N, frames.front(), frames.back());
+  double fps = given_fps;
+  if (known && fps > 0 && fps != known->video_fps) {
+    std::ostringstream m;
+    m << obsmat.string() << " is the " << known->name << " recording, filmed at " << known->video_fps << " fps; --fps " << fps
+      << " contradicts it (leave --fps out)";
+    throw ConfigError(m.str());
+  }
+  if (fps == 0.0 && known) fps = known->video_fps;
+  if (fps == 0.0) fps = video_fps_from_info(folder / "info.txt", rows, budget);
+  if (!(fps > 0.0)) {
+    throw ConfigError("cannot tell the video frame rate of " + obsmat.string() +
+                      ": its rows are not one of the recordings throng knows (ETH/BIWI eth, hotel; UCY zara01, zara02, "
+                      "students03) and no info.txt beside it states the annotation's time step; give the rate with --fps");
+  }
+
+  std::unordered_map<std::int64_t, std::size_t> column;
+  for (std::size_t n = 0; n < ids.size(); ++n) column[ids[n]] = n;
 
   CrowdFile out;
   CrowdMotion& m = out.motion;
@@ -224,21 +296,15 @@ CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, con
     m.velocities[m.index(t, n) + 2] = 0.0;
   }
 
-  const auto groups_path = folder / "groups.txt";
-  if (std::filesystem::exists(groups_path, ec)) {
-    const auto groups = read_groups(groups_path, budget);
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      for (std::int64_t id : groups[g]) {
-        const auto it = column.find(id);
-        if (it != column.end() && m.species[it->second] == 0) m.species[it->second] = static_cast<std::int32_t>(g + 1);
-      }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    for (std::int64_t id : groups[g]) {
+      const auto it = column.find(id);
+      if (it != column.end() && m.species[it->second] == 0) m.species[it->second] = static_cast<std::int32_t>(g + 1);
     }
   }
-  const auto map_path = folder / "map.xml";
-  if (std::filesystem::exists(map_path, ec)) out.scene = read_map(map_path, options.wall_thickness, budget);
-
+  out.scene = std::move(scene);
   out.provenance.inputs.push_back(obsmat.string());
-  if (auto credit = dataset_credit(name); !credit.empty()) out.provenance.credits.push_back(credit);
+  if (known) out.provenance.credits.push_back(credit_of(*known));
   m.validate(obsmat.string());
   return out;
 }

@@ -142,7 +142,11 @@ TEST_CASE("collide: bad jobs, flags and inputs exit with their codes and write n
 TEST_CASE("collide: the job's obstacles are added to the crowd's and avoided") {
   const auto dir = test::scratch_dir("cli_collide_walls");
   const auto input = write_crowd(dir, collide::scenes::bump(2, 60));
+  // The limits off (max_speed_ratio, max_acceleration: 0): a 2-s clip of groups passing through each other and
+  // the obstacles, which no walker could repair within them; here the point is that the job's obstacles count.
   const auto job = write_text(dir, "walls.yaml", R"(
+max_speed_ratio: 0
+max_acceleration: 0
 obstacles:
   - circle: {center: [0, 0.6], radius: 0.3}
     name: post

@@ -4,6 +4,7 @@
 #include "cli.h"
 #include "test_paths.h"
 
+#include <throng/check/schema.h>
 #include <throng/collide/runner.h>
 #include <throng/core/format.h>
 #include <throng/core/schema.h>
@@ -78,6 +79,7 @@ std::vector<CommandCase> commands() {
       {"import", "nowhere -o out.h5", J::none, "", {}, fields_of<RealDatasetOptions>(describe)},
       {"plot", "nowhere.h5 -o out.svg", J::none, "", {}, fields_of<PlotJob>(describe)},
       {"check-tiling", "nowhere.h5", J::none, "", {}, fields_of<CheckTilingJob>(describe)},
+      {"check-motion", "nowhere.h5 --reference elsewhere.h5", J::none, "", {}, fields_of<check::Job>(check::describe)},
       {"export", "nowhere.h5 --csv -o out.csv", J::none, "", {}, {}},
       {"info", "nowhere.h5", J::none, "", {}, {}},
   };

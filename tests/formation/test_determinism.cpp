@@ -27,6 +27,8 @@ TEST_CASE("one thread and two threads give the same bits: flat formation large e
   const Result one = run(p, o, 1);
   const Result two = run(p, o, 2);
   CHECK(one.motion.positions == two.motion.positions);
+  CHECK(one.motion.orientations == two.motion.orientations);
+  CHECK(one.motion.actions == two.motion.actions);
 }
 
 TEST_CASE("one thread and two threads give the same bits: hierarchy, matching and collision avoidance") {
@@ -42,6 +44,8 @@ TEST_CASE("one thread and two threads give the same bits: hierarchy, matching an
   const Result one = run(p, o, 1);
   const Result two = run(p, o, 2);
   CHECK(one.motion.positions == two.motion.positions);
+  CHECK(one.motion.orientations == two.motion.orientations);
+  CHECK(one.motion.actions == two.motion.actions);
   CHECK(one.correspondence == two.correspondence);
   CHECK(one.collision.satisfied);
 }

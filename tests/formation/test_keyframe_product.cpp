@@ -74,7 +74,7 @@ TEST_CASE("Eq. 5 through three keyframes: each product is its formula, both pass
 }
 
 TEST_CASE("Eq. 5 at tension 0: the cumulative form keeps each interval on its two keyframes' path, the paper's "
-          "product does not; with two keyframes they agree") {
+          "product does not, and with two keyframes they agree") {
   const std::vector<Eigen::MatrixXd> formations = three_formations();
   Problem three, last_two;
   for (int k = 0; k < 3; ++k) three.keyframes.push_back(Keyframe{2.0 * k, formations[static_cast<std::size_t>(k)], {}});

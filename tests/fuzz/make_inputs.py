@@ -71,7 +71,7 @@ def main(binary):
                       "characters: 3\nchains: 1\noutput: {frame_rate: 5}\n")
         throng(binary, "tile", job, "-o", tiling)
 
-        for d in ("crowd_file", "tiling_data", "csv", "real_dataset"):
+        for d in ("crowd_file", "tiling_data", "csv", "real_dataset", "import"):
             for folder in (CORPUS, REPRO):
                 shutil.rmtree(os.path.join(folder, d), ignore_errors=True)
                 os.makedirs(os.path.join(folder, d))
@@ -86,6 +86,19 @@ def main(binary):
                 if name != "obsmat.txt":
                     out.write(f"\n--8<-- {name}\n")
                 out.write(open(os.path.join(hotel, name)).read())
+
+        # import_crowd reads every format by content: the samples of tests/data/import (made from data/real/zara01
+        # by make_samples.py there, with their credit), cut short, a few obsmat rows, a crowd file.
+        samples = os.path.join(HERE, "..", "data", "import")
+        for name, lines in (("zara01_petrack.txt", 30), ("zara01_frame_id_x_y.txt", 20), ("zara01_renamed.csv", 20)):
+            with open(os.path.join(samples, name), newline="") as f, \
+                    open(os.path.join(CORPUS, "import", name.replace("zara01_", "")), "w", newline="") as out:
+                out.writelines(f.readlines()[:lines])
+        shutil.copy(os.path.join(samples, "zara01_pedpy.h5"), os.path.join(CORPUS, "import", "pedpy.h5"))
+        with open(os.path.join(HERE, "..", "..", "data", "real", "zara01", "obsmat.txt")) as f, \
+                open(os.path.join(CORPUS, "import", "obsmat.txt"), "w") as out:
+            out.writelines(f.readlines()[:20])
+        shutil.copy(base, os.path.join(CORPUS, "import", "crowd.h5"))
 
         expected = []
 

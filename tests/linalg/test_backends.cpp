@@ -1,4 +1,6 @@
 #include "problems.h"
+#include "test_paths.h"
+
 #include <algorithm>
 
 #include <test_paths.h>

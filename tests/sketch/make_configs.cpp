@@ -61,6 +61,8 @@ void write_options(std::ostream& out, const Options& o) {
   out << "weights: {trajectory: " << num(o.trajectory_weight) << ", avoid: " << num(o.avoid_weight)
       << ", obstacle: " << num(o.obstacle_weight) << "}\n";
   out << "time_step: " << num(o.time_step_s) << "\n";
+  out << "direction_filter: " << num(o.direction_filter_s) << "\n";
+  out << "max_acceleration: " << num(o.max_acceleration_m_s2) << "\n";
   out << "output_rate: " << num(o.output_rate_hz) << "\n";
   out << "duration: " << num(o.duration_s) << "\n";
   out << "end_of_path: " << (o.end_of_path == EndOfPath::stop ? "stop" : "remove") << "\n";

@@ -2,6 +2,7 @@
 // alignment a rigid motion, the blend closes the gap smoothly within its window, and errors are named.
 #include "../graph/synthetic_crowd.h"
 
+#include <throng/check/motion_check.h>
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
 #include <throng/core/random.h>
@@ -299,6 +300,7 @@ TEST_CASE("stitching two different formations closes the gap smoothly inside the
   INFO("sample_step " << step);
   Options base;
   base.sample_step = step;
+  base.guard.enabled = false;  // the blend itself (the guard's own test is below)
   const Result r = stitch_clips(g, g2, base);
   REQUIRE(r.crowd.frame_count() == 31 + 41 - 1);
   CHECK(r.crowd.times[30] == g.times[30]);
@@ -362,6 +364,7 @@ TEST_CASE("the blending window is a duration: the whole clips by default, shorte
   }
   SECTION("automatic, past the budget: the longest common window that fits") {
     Options o;
+    o.guard.enabled = false;  // the window itself
     o.max_blend_vertices = 12 * 25;  // 25 samples of the 12 agents: the joint, 11 free on each side, 2 pinned edges
     const Result r = stitch_clips(g, g2, o);
     CHECK(r.report.window_limited);
@@ -377,6 +380,46 @@ TEST_CASE("the blending window is a duration: the whole clips by default, shorte
     CHECK(tiny.report.solved_samples == 3);
     CHECK(tiny.report.window_first == 1);
   }
+}
+
+TEST_CASE("the guard keeps a sharp stitch within the speed and acceleration limits, and reports it") {
+  // Two formations that differ (a 1 m and a 1.6 m grid) blended over 0.6 s: closing the gap that fast makes the
+  // outer agents faster and bends their paths sharply. Judged by the independent checker against the clips'
+  // own motion: speed ≤ 1.25 × the faster clip's fastest, acceleration ≤ 3 m/s² wherever the clips were below.
+  const CrowdMotion g = test::marching_grid(3, 4, 31, 1.0, 1.3, 0.1, 0.0, 0.05, 1);
+  CrowdMotion g2 = test::marching_grid(3, 4, 41, 1.6, 1.3, 0.1, 0.0, 0.05, 2);
+  const double shift = g.position(30, 0).x() - g2.position(0, 0).x();
+  for (std::size_t f = 0; f < g2.frame_count(); ++f) {
+    g2.times[f] += 10;
+    for (std::size_t a = 0; a < g2.agent_count(); ++a) g2.position(f, a).x() += shift;
+  }
+  const check::Settings settings;
+  const double source_speed = std::max(check::measure(g, {}, settings).speed.max, check::measure(g2, {}, settings).speed.max);
+  const double source_acceleration =
+      std::max(check::measure(g, {}, settings).acceleration.max, check::measure(g2, {}, settings).acceleration.max);
+  check::Limits limits;
+  limits.max_speed = 1.25 * source_speed;
+  limits.max_acceleration = limits.acceleration_p99 = std::max(3.0, source_acceleration);
+  Options o;
+  o.blend_window = 0.6;
+  o.guard.enabled = false;
+  const Result raw = stitch_clips(g, g2, o);
+  const check::Verdict before = check::check(check::measure(raw.crowd, {}, settings), limits);
+  REQUIRE_FALSE(before.passed());  // the problem is there without the guard
+  o.guard.enabled = true;
+  const Result guarded = stitch_clips(g, g2, o);
+  const check::Statistics after = check::measure(guarded.crowd, {}, settings);
+  INFO("speed " << after.speed.max << " (limit " << limits.max_speed << "), acceleration " << after.acceleration.max);
+  for (const check::Violation& v : check::check(after, limits).violations) INFO(check::describe(v));
+  CHECK(check::check(after, limits).passed());
+  const timewarp::GuardReport& r = guarded.report.guard;
+  CHECK((r.warped || r.windows > 0));
+  CHECK(r.kinks_after == 0);
+  CHECK(r.speed_limit == Approx(limits.max_speed));
+  CHECK(r.max_speed_after <= r.speed_limit * (1 + 1e-6));
+  if (r.warped) CHECK(guarded.crowd.times.back() > raw.crowd.times.back());  // slowed down: a longer clip
+  // The guard leaves the clips' far ends: the first frame is untouched.
+  for (std::size_t a = 0; a < 12; ++a) CHECK((guarded.crowd.position(0, a) - g.position(0, a)).norm() <= 1e-9);
 }
 
 TEST_CASE("formation edits by agent id of the first clip act at the solved samples in their frames") {

@@ -107,10 +107,14 @@ std::string failures(const CheckReport& r) {
 }
 
 // The streamed frames against lay_out of the whole tiling: the same frame times, the same agents present at
-// every frame under the same ids, the same positions (bit for bit).
+// every frame under the same ids, the same positions, facings and actions (bit for bit), the same action table.
 void check_frames(const PatchLibrary& lib, const Run& run, const Region& region, double rate) {
   const Characters laid = lay_out(lib, run.tiling, region, LayoutOptions{rate, {1, 1, 1}});
   const CrowdMotion& whole = laid.motion;
+  for (const FrameWindow& fw : run.frames) {
+    REQUIRE_NOTHROW(fw.frames.validate("window " + std::to_string(fw.index)));
+    REQUIRE(fw.frames.action_table == whole.action_table);
+  }
   std::size_t frame = 0, mismatches = 0, present = 0;
   std::int64_t highest = -1;
   for (const FrameWindow& fw : run.frames) {
@@ -130,7 +134,9 @@ void check_frames(const PatchLibrary& lib, const Run& run, const Region& region,
           continue;
         }
         ++here;
-        mismatches += !whole.present(frame + f, id) || m.position(f, a) != whole.position(frame + f, id);
+        mismatches += !whole.present(frame + f, id) || m.position(f, a) != whole.position(frame + f, id) ||
+                      m.orientation(f, a).coeffs() != whole.orientation(frame + f, id).coeffs() ||
+                      m.action(f, a) != whole.action(frame + f, id);
       }
       // No agent of the whole crowd is missing from the window.
       std::size_t expected = 0;

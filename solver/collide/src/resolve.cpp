@@ -15,6 +15,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <tuple>
 
@@ -31,6 +32,9 @@ using Displacement = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 // segment), 0.5 m 50-75 % slower.
 constexpr double tracker_skin = 0.15;
 
+// A deformation of which less than this fraction fits within the limits is dropped (collide.h "Limits"): its
+// contact could only creep, and a contact that creeps never stops making progress.
+constexpr double min_step = 0.05;
 
 // One contact interval across iterations: (kind, agent or a, b or obstacle, interval).
 using ContactKey = std::tuple<int, std::size_t, std::size_t, std::size_t>;
@@ -39,6 +43,7 @@ using ContactKey = std::tuple<int, std::size_t, std::size_t, std::size_t>;
 // solves the track).
 struct Track {
   std::size_t agent = 0, first = 0, length = 0;
+  double interval_s = 0;  // mean frame interval
   std::vector<char> pinned;
   std::unique_ptr<TrackSolver> solver;
   std::vector<PointConstraint> constraints;  // this iteration's
@@ -50,6 +55,7 @@ struct ContactHistory {
   double best_deficit = std::numeric_limits<double>::infinity();
   std::size_t pushes_since_best = 0;
   bool abandoned = false;
+  bool held[2] = {false, false};  // pairs: agent a's, b's deformation found no room within the limits
 };
 
 class Repair {
@@ -59,6 +65,7 @@ class Repair {
       : input_(crowd), crowd_(crowd), obstacles_(obstacles), options_(options), frames_(crowd.frame_count()),
         agents_(crowd.agent_count()), communicator_(communicator), ranks_(communicator.size()), rank_(communicator.rank()) {
     make_tracks();
+    make_limits();
   }
 
   Result run(Progress& progress) {
@@ -129,6 +136,8 @@ class Repair {
     report.moved_agents = static_cast<std::size_t>(std::count(moved_ever.begin(), moved_ever.end(), 1));
     report.factorizations = static_cast<int>(ranks_ > 1 ? communicator_.sum(factorizations_) : factorizations_);
     report.max_displacement = largest_displacement();
+    report.limited_steps = limited_steps_;
+    report.held_steps = held_steps_;
     report.input_motion = motion_stats(input_);
     report.output_motion = motion_stats(crowd_);
     result.crowd = crowd_;
@@ -163,6 +172,7 @@ class Repair {
           ++f;
         }
         t.length = f - t.first;
+        t.interval_s = t.length > 1 ? (crowd_.times[f - 1] - crowd_.times[t.first]) / static_cast<double>(t.length - 1) : 1.0;
         t.pinned.assign(t.length, fixed[a]);
         if (options_.pin_ends) {
           t.pinned.front() = 1;
@@ -171,6 +181,81 @@ class Repair {
         tracks_.push_back(std::move(t));
       }
     }
+  }
+
+  // --- limits (collide.h "Limits") ---
+  void make_limits() {
+    speed_limit_ = options_.max_speed_ratio * motion_stats(input_).max_speed;
+    if (options_.max_acceleration > 0) {
+      input_acceleration_.assign(frames_ * agents_, 0.0);
+      for (std::size_t a = 0; a < agents_; ++a) {
+        for (std::size_t f = 1; f + 1 < frames_; ++f) {
+          if (input_.present(f - 1, a) && input_.present(f, a) && input_.present(f + 1, a)) {
+            input_acceleration_[a * frames_ + f] = acceleration(input_, a, f, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                                               Eigen::Vector3d::Zero()).norm();
+          }
+        }
+      }
+    }
+  }
+  double bound(std::size_t agent) const {
+    return options_.max_displacement > 0 ? options_.max_displacement : 8.0 * input_.radii[agent];
+  }
+  // (p_{f+1} + d1 − p_f − d0) / Δt
+  static Eigen::Vector3d velocity(const CrowdMotion& c, std::size_t a, std::size_t f, const Eigen::Vector3d& d0,
+                                  const Eigen::Vector3d& d1) {
+    return (c.position(f + 1, a) + d1 - c.position(f, a) - d0) / (c.times[f + 1] - c.times[f]);
+  }
+  // Central second difference at frame f with the three displacements added.
+  static Eigen::Vector3d acceleration(const CrowdMotion& c, std::size_t a, std::size_t f, const Eigen::Vector3d& d0,
+                                      const Eigen::Vector3d& d1, const Eigen::Vector3d& d2) {
+    return (velocity(c, a, f, d1, d2) - velocity(c, a, f - 1, d0, d1)) / (0.5 * (c.times[f + 1] - c.times[f - 1]));
+  }
+
+  // The largest α in [0, 1] such that moving track t by α·d keeps every vertex within its displacement bound,
+  // every speed within speed_limit_ and every acceleration within max(max_acceleration, the input's there): each
+  // condition is |x + α y| ≤ L with x, y vectors of the current state and of d, a quadratic in α that holds at
+  // α = 0, so its larger root bounds α.
+  double admissible_step(const Track& t, const Displacement& d) const {
+    double alpha = 1.0;
+    auto keep = [&alpha](const Eigen::Vector3d& x, const Eigen::Vector3d& y, double limit) {
+      const double yy = y.squaredNorm(), c = x.squaredNorm() - limit * limit;
+      if (yy == 0.0) return;
+      if (c > 1e-12 * limit * limit) {  // already at the limit (rounding): no room
+        alpha = 0.0;
+        return;
+      }
+      const double xy = x.dot(y);
+      alpha = std::min(alpha, (-xy + std::sqrt(std::max(0.0, xy * xy - yy * std::min(c, 0.0)))) / yy);
+    };
+    auto move = [&](std::size_t j) {
+      return Eigen::Vector3d(d(static_cast<Eigen::Index>(j), 0), d(static_cast<Eigen::Index>(j), 1), 0.0);
+    };
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    const double limit = bound(t.agent);
+    for (std::size_t j = 0; j < t.length; ++j) {
+      const Vec o = offset_from_input(t.first + j, t.agent);
+      keep(Eigen::Vector3d(o.x(), o.y(), 0.0), move(j), limit);
+    }
+    if (speed_limit_ > 0) {
+      for (std::size_t j = 0; j + 1 < t.length; ++j) {
+        const std::size_t f = t.first + j;
+        const Eigen::Vector3d now = velocity(crowd_, t.agent, f, zero, zero);
+        keep(now, velocity(crowd_, t.agent, f, move(j), move(j + 1)) - now, (1 - 1e-6) * speed_limit_);  // strictly within
+      }
+    }
+    if (!input_acceleration_.empty()) {
+      for (std::size_t j = 1; j + 1 < t.length; ++j) {
+        const std::size_t f = t.first + j;
+        const Eigen::Vector3d now = acceleration(crowd_, t.agent, f, zero, zero, zero);
+        const Eigen::Vector3d change = acceleration(crowd_, t.agent, f, move(j - 1), move(j), move(j + 1)) - now;
+        // A rounding-sized slack: a push changes every frame of the track a little, and a frame already at the
+        // limit (the input's own, beyond max_acceleration) would otherwise hold the whole track.
+        const double own = input_acceleration_[t.agent * frames_ + f];
+        keep(now, change, (1 + 1e-3) * std::max(options_.max_acceleration, own));
+      }
+    }
+    return std::max(alpha, 0.0);
   }
 
   Vec at(std::size_t frame, std::size_t agent) const {
@@ -251,9 +336,20 @@ class Repair {
     std::size_t index;
   };
 
+  // The interval's two vertices are not used by a push taken this iteration, and — with smoothing in time —
+  // no push on the same track this iteration is within smoothing_time of it: exact pushes a few frames apart
+  // pull the track to different places frame by frame (a kink at every one), while one push per smoothing_time
+  // moves the whole stretch smoothly and clears its neighbouring intervals with it (collide.h "Iteration").
   bool claimable(std::size_t agent, std::size_t interval) const {
     const std::size_t v0 = agent * frames_ + interval;
-    return used_[v0] == 0 && used_[v0 + 1] == 0;
+    if (used_[v0] != 0 || used_[v0 + 1] != 0) return false;
+    if (options_.smoothing_time <= 0) return true;
+    const Track& t = tracks_[static_cast<std::size_t>(track_of_[v0])];
+    const double k = static_cast<double>(interval - t.first), apart = options_.smoothing_time / t.interval_s;
+    for (const PointConstraint& c : t.constraints) {
+      if (std::abs(static_cast<double>(c.v0) - k) < apart) return false;
+    }
+    return true;
   }
   void mark(std::size_t agent, std::size_t interval) {
     const std::size_t v0 = agent * frames_ + interval;
@@ -266,7 +362,7 @@ class Repair {
     const Track& t = tracks_[static_cast<std::size_t>(m.track)];
     const Vec step = m.scale * displacement;
     for (int v : {m.constraint.v0, m.constraint.v1}) {
-      if ((offset_from_input(t.first + static_cast<std::size_t>(v), agent) + step).norm() > options_.max_displacement) return false;
+      if ((offset_from_input(t.first + static_cast<std::size_t>(v), agent) + step).norm() > bound(agent)) return false;
     }
     return true;
   }
@@ -296,6 +392,17 @@ class Repair {
     return true;
   }
   void abandon(const ContactKey& k) { history_[k].abandoned = true; }
+  // The limits left no room for `agent`'s side of contact k: a pair goes on pushing its other side alone (and is
+  // abandoned when both are held), an obstacle contact is abandoned.
+  void hold(const ContactKey& k, std::size_t agent) {
+    ContactHistory& h = history_[k];
+    if (std::get<0>(k) != 0) {
+      h.abandoned = true;
+      return;
+    }
+    h.held[agent == std::get<1>(k) ? 0 : 1] = true;
+    if (h.held[0] && h.held[1]) h.abandoned = true;
+  }
 
   // The direction agent a is pushed (b the opposite way). `apart`: along their offset at the moment of closest
   // approach. `sideways`: the part of that offset across their relative motion over the interval — for an
@@ -317,6 +424,14 @@ class Repair {
     return {1.0, 0.0};
   }
 
+  // The pushes of a pair contact's two points for a separation `separation` (metres) along pair_direction,
+  // half each; a side that cannot move (`a_moves` / `b_moves` false) takes none and the other the whole.
+  std::pair<Vec, Vec> pair_pushes(const PairContact& c, double separation, bool a_moves, bool b_moves) const {
+    const Vec n = pair_direction(c);
+    const double half = 0.5 * separation;
+    return {(b_moves ? half : 2 * half) * n, -(a_moves ? half : 2 * half) * n};
+  }
+
   // Distance along `direction` from p until the obstacle's signed distance reaches `clearance` (convex: one exit).
   double exit_distance(const Obstacle& o, const Vec& p, double time, const Vec& direction, double clearance) const {
     auto outside = [&](double lambda) { return distance_to(o, p + lambda * direction, time).signed_distance >= clearance; };
@@ -332,6 +447,20 @@ class Repair {
     return hi;
   }
 
+  // Walking from contact `c` backward (step −1: from the interval's first frame) or forward (+1: from its
+  // second) along the agent's run of present frames, the outward normal of the obstacle at the first frame where
+  // the agent keeps its clearance; none when it never does.
+  std::optional<Vec> clear_side(const ObstacleContact& c, int step) const {
+    const Obstacle& o = obstacles_[c.obstacle];
+    for (std::ptrdiff_t f = static_cast<std::ptrdiff_t>(c.interval) + (step > 0 ? 1 : 0);
+         f >= 0 && f < static_cast<std::ptrdiff_t>(frames_) && crowd_.present(static_cast<std::size_t>(f), c.agent); f += step) {
+      const auto frame = static_cast<std::size_t>(f);
+      const ObstacleDistance d = distance_to(o, at(frame, c.agent), crowd_.times[frame]);
+      if (d.signed_distance >= c.clearance) return d.normal;
+    }
+    return std::nullopt;
+  }
+
   Vec obstacle_displacement(const ObstacleContact& c) const {
     const Obstacle& o = obstacles_[c.obstacle];
     const double t0 = crowd_.times[c.interval], t1 = crowd_.times[c.interval + 1];
@@ -341,7 +470,19 @@ class Repair {
     const double extra = 0.5 * options_.push_fraction * c.clearance;
     Vec relative = (p1 - p0) / (t1 - t0);
     if (o.is_moving()) relative -= (pose_at(o, t1).translation() - pose_at(o, t0).translation()) / (t1 - t0);
-    if (options_.obstacle_pull == ObstaclePull::sideways && relative.norm() > 1e-9) {
+    ObstaclePull rule = options_.obstacle_pull;
+    if (rule == ObstaclePull::back) {
+      // The side it came from (collide.h "Iteration"): the outward normal where the track was last clear
+      // before the contact, when it is clear again later on that same side (within 60°) or never; past or
+      // through the obstacle (clear again on another side): sideways.
+      const std::optional<Vec> entry = clear_side(c, -1), exit = clear_side(c, +1);
+      if (entry && !(exit && entry->dot(*exit) < 0.5)) {
+        return (exit_distance(o, p, time, *entry, c.clearance) + extra) * *entry;
+      }
+      if (!entry && exit) return (exit_distance(o, p, time, *exit, c.clearance) + extra) * *exit;
+      rule = entry ? ObstaclePull::sideways : ObstaclePull::nearest;
+    }
+    if (rule == ObstaclePull::sideways && relative.norm() > 1e-9) {
       const Vec side = Vec(-relative.y(), relative.x()).normalized();
       const double left = exit_distance(o, p, time, side, c.clearance);
       const double right = exit_distance(o, p, time, -side, c.clearance);
@@ -374,10 +515,19 @@ class Repair {
       if (candidate.kind == 0) {
         const PairContact& c = contacts.pairs[candidate.index];
         if (!claimable(c.a, c.interval) || !claimable(c.b, c.interval)) continue;
-        const Mover ma = mover(c.a, c.interval, c.s), mb = mover(c.b, c.interval, c.s);
-        const Vec n = pair_direction(c);
-        const double half = 0.5 * options_.push_fraction * c.clearance;
-        const Vec push_a = (mb.movable ? half : 2 * half) * n, push_b = -(ma.movable ? half : 2 * half) * n;
+        Mover ma = mover(c.a, c.interval, c.s), mb = mover(c.b, c.interval, c.s);
+        // A side the limits held before takes no push: the other one takes it whole, as for a pinned side.
+        if (const auto h = history_.find(key(c)); h != history_.end()) {
+          ma.movable = ma.movable && !h->second.held[0];
+          mb.movable = mb.movable && !h->second.held[1];
+        }
+        if (!ma.movable && !mb.movable) {
+          abandon(key(c));
+          continue;
+        }
+        const double separation = options_.push_size == PushSize::full ? candidate.deficit + options_.push_fraction * c.clearance
+                                                                        : options_.push_fraction * c.clearance;
+        const auto [push_a, push_b] = pair_pushes(c, separation, ma.movable, mb.movable);
         if ((ma.movable && !within_bound(ma, c.a, push_a)) || (mb.movable && !within_bound(mb, c.b, push_b))) {
           abandon(key(c));
           continue;
@@ -498,7 +648,7 @@ class Repair {
             for (std::size_t v = 0; v < t.length; ++v) {
               original.row(static_cast<Eigen::Index>(v)) = input_.position(t.first + v, t.agent).head<2>().transpose();
             }
-            t.solver = make_track_solver(original, t.pinned, options_);
+            t.solver = make_track_solver(original, t.pinned, options_, t.interval_s);
             made[j] = 1;
           }
           displacement[k] = t.solver->solve(t.constraints);
@@ -517,24 +667,23 @@ class Repair {
     }
     if (ranks_ > 1) gather(busy, mine, displacement, failure);
     if (!failure.empty()) throw NumericalError(failure);
-    // A deformation that would carry any vertex beyond max_displacement is dropped, and the contacts that asked
-    // for it abandoned: the bound holds for every vertex, not only the pushed ones.
+    // Each deformation is taken as far as the limits allow (collide.h "Limits"): whole, shortened, or — with
+    // less than min_step of it admissible — dropped, and the contacts that asked for it abandoned. The bounds
+    // hold for every vertex, not only the pushed ones.
     for (std::size_t k = 0; k < busy.size(); ++k) {
       Track& t = tracks_[busy[k]];
       const Displacement& d = displacement[k];
-      bool within = true;
-      for (std::size_t j = 0; j < t.length && within; ++j) {
-        within = (offset_from_input(t.first + j, t.agent) + d.row(static_cast<Eigen::Index>(j)).transpose()).norm() <=
-                 options_.max_displacement;
-      }
-      if (within) {
+      const double alpha = std::min(1.0, admissible_step(t, d));
+      if (alpha >= min_step) {
+        if (alpha < 1.0) ++limited_steps_;
         for (std::size_t j = 0; j < t.length; ++j) {
           double* p = crowd_.positions.data() + crowd_.index(t.first + j, t.agent);
-          p[0] += d(static_cast<Eigen::Index>(j), 0);
-          p[1] += d(static_cast<Eigen::Index>(j), 1);
+          p[0] += alpha * d(static_cast<Eigen::Index>(j), 0);
+          p[1] += alpha * d(static_cast<Eigen::Index>(j), 1);
         }
       } else {
-        for (const ContactKey& by : t.pushed_by) abandon(by);
+        ++held_steps_;
+        for (const ContactKey& by : t.pushed_by) hold(by, t.agent);
       }
       t.constraints.clear();
       t.pushed_by.clear();
@@ -583,6 +732,9 @@ class Repair {
   std::vector<std::size_t> touched_;
   std::map<ContactKey, ContactHistory> history_;
   double factorizations_ = 0;  // tracks factorised on this rank
+  double speed_limit_ = 0;     // m/s, 0: none
+  std::vector<double> input_acceleration_;  // agent * frames + frame → |a| of the input (m/s²); empty: no limit
+  std::size_t limited_steps_ = 0, held_steps_ = 0;
 };
 
 std::string gap(double v) { return std::isfinite(v) ? with_digits(v, 4) + " m" : "none within 16 m"; }

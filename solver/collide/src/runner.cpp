@@ -46,6 +46,8 @@ void describe(ReportWriter& w, const Run& run) {
   w.count("pushed_points", r.constraints);
   w.count("abandoned_contacts", r.abandoned_contacts);
   w.count("moved_agents", r.moved_agents);
+  w.count("limited_steps", r.limited_steps);  // deformations shortened to keep within the limits (collide.h "Limits")
+  w.count("held_steps", r.held_steps);        // deformations dropped: no room within the limits
   w.number("min_pair_gap_m", r.min_pair_gap);
   w.number("min_obstacle_gap_m", r.min_obstacle_gap);
   w.number("max_displacement_m", r.max_displacement);

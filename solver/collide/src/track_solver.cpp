@@ -28,6 +28,11 @@ using Displacement = Eigen::Matrix<double, Eigen::Dynamic, 2>;
 // without pins (whose similarity modes only the anchor holds) stays well conditioned.
 constexpr double spread_cap = 1000.0;
 
+// Smoothing times of more frames than this count as this: the anchor weight λ w̄ / n⁴ stays ≥ 1.6e-7 of the
+// bending weight, so the system keeps a condition number below ~1e8 and the three track methods agree to 1e-10
+// m (at 30 frames per second catch_up_time counts up to 1.7 s; at 5 fps, 10 s).
+constexpr double smoothing_cap = 50.0;
+
 // The objective of one track over all 2·length unknowns: A, its row weights, and which unknowns are free.
 struct Objective {
   Sparse A;
@@ -37,15 +42,17 @@ struct Objective {
 };
 
 Objective make_objective(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned,
-                         const Options& options) {
+                         const Options& options, double interval_s) {
   const Index length = positions.rows();
   FeatureOptions feature_options;
   feature_options.min_length = options.min_feature_length;
   const Index features = length >= 3 ? length - 2 : 0;
   const Index steps = length - 1;
-  const Index rows = 2 * features + 2 * steps + 2 * length;
+  const bool smooth = options.smoothing_time > 0;
+  const Index bends = smooth ? features : 0;  // acceleration rows d_{k−1} − 2 d_k + d_{k+1}
+  const Index rows = 2 * features + 2 * bends + 2 * steps + 2 * length;
   std::vector<Triplet> entries;
-  entries.reserve(static_cast<std::size_t>(12 * features + 4 * steps + 2 * length));
+  entries.reserve(static_cast<std::size_t>(12 * features + 6 * bends + 4 * steps + 2 * length));
   Objective o;
   o.weights.resize(rows);
   // Temporal features: residual d_v − (1 − c) d_u − c d_w as two real rows (complex coefficients, Eq. 1).
@@ -68,25 +75,65 @@ Objective make_objective(const Eigen::Ref<const Displacement>& positions, const 
     }
     o.weights[row] = o.weights[row + 1] = f.weight;
   }
-  // Velocity: every step's change d_{k+1} − d_k (the change of the step vector, so of the velocity), weight
-  // velocity_weight · (mean temporal weight). Anchor: every unknown, weight (velocity weight) / spread²; the two
-  // balance at about `spread` frames, so a push fades as exp(−|k|/spread) (with velocity_weight 0 the anchor is
-  // (mean temporal weight) / spread⁴ against the bending term).
   const double mean_weight = features > 0 ? o.weights.head(2 * features).mean() : 1.0;
-  const double spread = std::min(options.spread, spread_cap);
-  const double velocity = options.velocity_weight * mean_weight;
-  const double anchor = velocity > 0 ? velocity / (spread * spread) : mean_weight / std::pow(spread, 4);
-  for (Index k = 0; k < steps; ++k) {
-    for (Index axis = 0; axis < 2; ++axis) {
-      const Index row = 2 * features + 2 * k + axis;
-      entries.emplace_back(row, 2 * k + axis, -1.0);
-      entries.emplace_back(row, 2 * (k + 1) + axis, 1.0);
-      o.weights[row] = velocity;
+  // Velocity and anchor weights across (and, with smoothing, along) the agent's path.
+  double velocity = 0, anchor = 0, velocity_along = 0, anchor_along = 0;
+  if (smooth) {
+    // Smoothing in time (collide.h "Deformation of one trajectory"): with n = T / h frames, the rows
+    // Δ²d, Δd and d weighted λ w̄ (1, 2/n², 1/n⁴) are the discrete ∫ T⁴|d″|² + 2T²|d′|² + |d|² dt, whose
+    // response to a push is (1 + |t|/T) e^{−|t|/T}; along the path the same with n = catch_up_time / h.
+    const double n = std::min(options.smoothing_time / interval_s, smoothing_cap);
+    const double m = std::min(std::max(options.catch_up_time, options.smoothing_time) / interval_s, smoothing_cap);
+    const double bend = options.smoothing_weight * mean_weight;
+    velocity = 2 * bend / (n * n);
+    anchor = bend / (n * n * n * n);
+    velocity_along = 2 * bend / (m * m);
+    anchor_along = bend / (m * m * m * m);
+    for (Index k = 1; k + 1 < length; ++k) {
+      for (Index axis = 0; axis < 2; ++axis) {
+        const Index row = 2 * features + 2 * (k - 1) + axis;
+        entries.emplace_back(row, 2 * (k - 1) + axis, 1.0);
+        entries.emplace_back(row, 2 * k + axis, -2.0);
+        entries.emplace_back(row, 2 * (k + 1) + axis, 1.0);
+        o.weights[row] = bend;
+      }
     }
+  } else {
+    // Velocity: every step's change d_{k+1} − d_k (the change of the step vector, so of the velocity), weight
+    // velocity_weight · (mean temporal weight). Anchor: every unknown, weight (velocity weight) / spread²; the
+    // two balance at about `spread` frames, so a push fades as exp(−|k|/spread) (with velocity_weight 0 the
+    // anchor is (mean temporal weight) / spread⁴ against the bending term).
+    const double spread = std::min(options.spread, spread_cap);
+    velocity = options.velocity_weight * mean_weight;
+    anchor = velocity > 0 ? velocity / (spread * spread) : mean_weight / std::pow(spread, 4);
+    velocity_along = velocity;
+    anchor_along = anchor;
   }
-  for (Index u = 0; u < 2 * length; ++u) {
-    entries.emplace_back(2 * features + 2 * steps + u, u, 1.0);
-    o.weights[2 * features + 2 * steps + u] = anchor;
+  // The rows in the path's own frame: t̂ (along, the direction of the input's motion there) and its left normal.
+  // A vertex (or step) where the input does not move has no direction: both rows take the across weights.
+  auto direction = [&](Index from, Index to) -> Eigen::Vector2d {
+    const Eigen::Vector2d d = positions.row(std::min(to, length - 1)) - positions.row(std::max<Index>(from, 0));
+    const double norm = d.norm();
+    return norm > 1e-9 ? Eigen::Vector2d(d / norm) : Eigen::Vector2d::Zero();
+  };
+  auto frame_rows = [&](Index row, const Eigen::Vector2d& along, const std::vector<std::pair<Index, double>>& terms,
+                        double weight_along, double weight_across) {
+    const bool oriented = along.squaredNorm() > 0;
+    const Eigen::Vector2d t = oriented ? along : Eigen::Vector2d(1, 0), n(-t.y(), t.x());
+    for (const auto& [vertex, c] : terms) {
+      entries.emplace_back(row, 2 * vertex, c * t.x());
+      entries.emplace_back(row, 2 * vertex + 1, c * t.y());
+      entries.emplace_back(row + 1, 2 * vertex, c * n.x());
+      entries.emplace_back(row + 1, 2 * vertex + 1, c * n.y());
+    }
+    o.weights[row] = oriented ? weight_along : weight_across;
+    o.weights[row + 1] = weight_across;
+  };
+  for (Index k = 0; k < steps; ++k) {
+    frame_rows(2 * features + 2 * bends + 2 * k, direction(k, k + 1), {{k, -1.0}, {k + 1, 1.0}}, velocity_along, velocity);
+  }
+  for (Index k = 0; k < length; ++k) {
+    frame_rows(2 * features + 2 * bends + 2 * steps + 2 * k, direction(k - 1, k + 1), {{k, 1.0}}, anchor_along, anchor);
   }
   o.A.resize(rows, 2 * length);
   o.A.setFromTriplets(entries.begin(), entries.end());
@@ -140,7 +187,9 @@ void check_met(const std::vector<Row>& rows, const Eigen::VectorXd& x) {
     worst = std::max(worst, std::abs(row_value(r, x) - r.target));
     largest = std::max(largest, std::abs(r.target));
   }
-  if (!(worst <= 1e-9 * largest + 1e-14)) {
+  // Rounding: the smoothing in time makes Q's condition number up to ~1e8 (smoothing_cap), so a solve through a
+  // Schur complement (schur, linalg) meets its rows to ~1e-8 of the largest push; beyond 1e-7 it went wrong.
+  if (!(worst <= 1e-7 * largest + 1e-14)) {
     throw NumericalError("collide: a trajectory's pushes could not be met (residual " + std::to_string(worst) + " m)");
   }
 }
@@ -159,9 +208,9 @@ struct BandedObjective {
 };
 
 BandedObjective banded_objective(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned,
-                                 const Options& options) {
+                                 const Options& options, double interval_s) {
   constexpr Index p = 5;
-  Objective o = make_objective(positions, pinned, options);
+  Objective o = make_objective(positions, pinned, options, interval_s);
   BandedObjective b;
   b.free_of = std::move(o.free_of);
   b.unknown_of = std::move(o.unknown_of);
@@ -211,8 +260,9 @@ void factorize_or_throw(BandCholesky& band, const std::string& what) {
 // O(|W|·9² + n·5) per solve, where the pushes of one trajectory and iteration span 5 % of it in the configs.
 class EliminationSolver final : public TrackSolver {
  public:
-  EliminationSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
-      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options)) {
+  EliminationSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options,
+                    double interval_s)
+      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options, interval_s)) {
     const BandCholesky& Q = objective_.Q;
     const Index n = Q.size(), p = Q.bandwidth();
     top_ = Q;
@@ -383,8 +433,9 @@ class EliminationSolver final : public TrackSolver {
 // --- schur: LLᵀ of the band once, exact Schur complement over the constraint rows ---
 class SchurSolver final : public TrackSolver {
  public:
-  SchurSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
-      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options)) {
+  SchurSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options,
+              double interval_s)
+      : length_(positions.rows()), objective_(banded_objective(positions, pinned, options, interval_s)) {
     factorize_or_throw(objective_.Q, "deformation system");
   }
 
@@ -434,9 +485,10 @@ class SchurSolver final : public TrackSolver {
 // --- linalg: the solver layer's ConstrainedLeastSquares (eigen backend) ---
 class LinalgSolver final : public TrackSolver {
  public:
-  LinalgSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options)
+  LinalgSolver(const Eigen::Ref<const Displacement>& positions, const std::vector<char>& pinned, const Options& options,
+               double interval_s)
       : length_(positions.rows()) {
-    Objective o = make_objective(positions, pinned, options);
+    Objective o = make_objective(positions, pinned, options, interval_s);
     free_of_ = std::move(o.free_of);
     unknown_of_ = std::move(o.unknown_of);
     rows_ = o.A.rows();
@@ -447,7 +499,7 @@ class LinalgSolver final : public TrackSolver {
     pinned_count_ = static_cast<Index>(pins.size());
     solver_.set_objective(o.A, o.weights);
     solver_.set_pinned(std::move(pins));
-    solver_.set_complex_pairs(true);
+    solver_.set_complex_pairs(options.catch_up_time <= options.smoothing_time || options.smoothing_time <= 0);  // isotropic rows
     try {
       solver_.precompute();
     } catch (const NumericalError& e) {
@@ -487,16 +539,17 @@ class LinalgSolver final : public TrackSolver {
 }  // namespace
 
 std::unique_ptr<TrackSolver> make_track_solver(const Eigen::Ref<const Displacement>& positions,
-                                               const std::vector<char>& pinned, const Options& options) {
+                                               const std::vector<char>& pinned, const Options& options,
+                                               double interval_s) {
   switch (options.track_method) {
     case TrackMethod::linalg:
-      return std::make_unique<LinalgSolver>(positions, pinned, options);
+      return std::make_unique<LinalgSolver>(positions, pinned, options, interval_s);
     case TrackMethod::schur:
-      return std::make_unique<SchurSolver>(positions, pinned, options);
+      return std::make_unique<SchurSolver>(positions, pinned, options, interval_s);
     case TrackMethod::eliminate:
       break;
   }
-  return std::make_unique<EliminationSolver>(positions, pinned, options);
+  return std::make_unique<EliminationSolver>(positions, pinned, options, interval_s);
 }
 
 }  // namespace throng::collide

@@ -7,9 +7,13 @@
 // spread²; with velocity_weight 0, mean temporal weight / spread⁴). Pinned vertices have d = 0 (eliminated). A point
 // constraint asks Σ_j c_j d_{v_j} = target (2 rows, free vertices only).
 //
+// With smoothing_time T > 0 (the default) the velocity and anchor rows are replaced by the smoothing in time of
+// collide.h: acceleration rows d_{k−1} − 2 d_k + d_{k+1} (weight λ w̄, λ = smoothing_weight), velocity rows
+// (2 λ w̄ / n²) and anchor rows (λ w̄ / n⁴), n = T / interval_s frames (at most 1,000).
+//
 // Solve: min |A d|²_W subject to C d = t, exactly, with Q = AᵀWA on the free unknowns assembled (and factorised)
 // once, when the track is first pushed. Every vertex carries at most one constraint (the repair takes disjoint
-// contacts); a residual above 1e-9 of the largest push is a NumericalError. No penalty, so no stiffness to
+// contacts); a residual above 1e-7 of the largest push (rounding, see check_met) is a NumericalError. No penalty, so no stiffness to
 // balance against the spread: every spread from 1 frame up works (the anchor is floored at spread 1,000, see
 // collide.h).
 //
@@ -51,12 +55,13 @@ class TrackSolver {
 };
 
 /// Assembles and factorises one track's system (once).
-///   positions  length by 2: the input trajectory (the features are measured on it)
-///   pinned     length flags; at least one vertex must be free
-///   options    spread, velocity_weight, min_feature_length, track_method
+///   positions   length by 2: the input trajectory (the features are measured on it)
+///   pinned      length flags; at least one vertex must be free
+///   options     smoothing_time, smoothing_weight (or spread, velocity_weight), min_feature_length, track_method
+///   interval_s  the track's mean frame interval (seconds): h of the smoothing rows
 /// Throws NumericalError when the system is not positive definite.
 [[nodiscard]] std::unique_ptr<TrackSolver> make_track_solver(
     const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& positions, const std::vector<char>& pinned,
-    const Options& options);
+    const Options& options, double interval_s);
 
 }  // namespace throng::collide

@@ -1,3 +1,5 @@
+#include "direct_steps.h"
+#include "iterative_steps.h"
 #include "request.h"
 #include "resample.h"
 #include "systems.h"
@@ -30,18 +32,35 @@ using Components = UnionFind;  // over graph vertices
 
 }  // namespace
 
-void validate(const Options& o) { check_options(describe, o, ""); }
+void validate(const Options& o) {
+  check_options(describe, o, "");
+  // The one rule that ties two options together (the ranges and choices are edit's schema).
+  if (o.solver.method == "iterative" && o.solver.backend != "eigen") {
+    throw ConfigError("solver.method iterative runs in this process on its own solvers: it needs solver.backend eigen, not '" +
+                      o.solver.backend + "' (use solver.method direct to solve with " + o.solver.backend + ")");
+  }
+}
+
+namespace {
+
+// SolverOptions::method resolved for a system of `free_vertices` unknown positions.
+bool uses_iterative_method(const Options& o, std::size_t free_vertices) {
+  if (o.solver.method == "iterative") return true;
+  if (o.solver.method == "direct" || o.solver.backend != "eigen") return false;
+  return free_vertices > o.solver.auto_direct_vertices;
+}
+
+}  // namespace
 
 struct Editor::State {
-  State(const Options& o) : options(o), step1_solver(o.solver), step2_solver(o.solver) {}
+  explicit State(const Options& o) : options(o) {}
 
   Options options;
   std::vector<std::int64_t> crowd_ids;
   CrowdMotion source;  // the clip's frames and agents at the source rate
   MotionGraph graph;
   FeatureSet features;
-  Objective step1, step2;  // their A handed to the solvers (empty here); weights and b kept
-  linalg::ConstrainedLeastSquares step1_solver, step2_solver;
+  std::unique_ptr<EditSteps> steps;  // the direct or the iterative method (edit_steps.h)
   ResolvedRequest current;
   bool has_request = false;
   Request request;  // the one `current` was resolved from, for messages
@@ -139,19 +158,8 @@ struct Editor::State {
         check_determined(resolved.handle_vertices, options.alpha_prime, options.beta_prime, "step 2 (scale compensation)",
                          "weights.alpha_prime", "weights.beta_prime");
       }
-      const auto pinned = resolved.pinned_unknowns();
-      step1_solver.set_pinned(pinned);
-      if (options.scale_compensation) step2_solver.set_pinned(pinned);
     }
-    if (!has_request || resolved.handle_vertices != current.handle_vertices ||
-        !same_matrix(resolved.handle_basis, current.handle_basis)) {
-      step1_solver.set_pin_basis(resolved.handle_basis);
-      if (options.scale_compensation) step2_solver.set_pin_basis(resolved.handle_basis);
-    }
-    if (!has_request || !same_matrix(resolved.C, current.C)) {
-      step1_solver.set_constraints(resolved.C);
-      if (options.scale_compensation) step2_solver.set_constraints(resolved.C);
-    }
+    steps->apply(resolved, has_request ? &current : nullptr);
     current = std::move(resolved);
     request = from;
     has_request = true;
@@ -159,11 +167,22 @@ struct Editor::State {
     report.constraint_rows = static_cast<std::size_t>(current.C.rows());
   }
 
-  void update_counts() {
-    report.factorizations = step1_solver.report().factorizations + step2_solver.report().factorizations;
-    report.analyses = step1_solver.report().analyses + step2_solver.report().analyses -
-                      step1_solver.report().adopted_analyses - step2_solver.report().adopted_analyses;
-    report.schur_columns = step1_solver.report().schur_columns + step2_solver.report().schur_columns;
+  // The last deform() solved directly (a DirectSteps of its own, released afterwards): the report's
+  // direct_difference_m and direct_constraint_residual_m.
+  void compare_direct() {
+    Options direct_options = options;
+    direct_options.solver.method = "direct";
+    direct_options.solver.backend = "eigen";
+    DirectSteps direct(features, graph.clip.positions, direct_options);
+    Positions y1, y2;
+    Report direct_report;
+    in_user_terms([&] {
+      direct.apply(current, nullptr);
+      direct.precompute(current);
+      direct.solve(current, y1, y2, direct_report);
+    });
+    report.direct_difference_m = (y2 - x2).rowwise().norm().maxCoeff();
+    report.direct_constraint_residual_m = direct_report.max_constraint_residual;
   }
 
   // Runs a solver step, turning its errors into messages in the user's terms.
@@ -199,20 +218,14 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
   s.graph = build_motion_graph(make_clip(crowd, options.clip, frames), options.formation);
   s.features = compute_features(s.graph, options.features);
   s.source = slice_clip(crowd, s.graph.clip);
-  const auto vertices = static_cast<Index>(s.graph.vertex_count());
-  const Eigen::MatrixXd modes = similarity_modes(s.graph.clip.positions);
-  s.step1 = step1_objective(s.features, vertices, options.alpha, options.beta);
-  s.step1_solver.set_objective(std::move(s.step1.A), s.step1.weights);  // the solver's copy is the only one
-  s.step1_solver.set_near_null_space(modes, 2);
-  s.step1_solver.set_complex_pairs(true);  // every feature row is complex-linear in (x, y) pairs
-  if (options.scale_compensation) {
-    s.step2 = step2_objective(s.features, vertices, options.alpha_prime, options.beta_prime);
-    s.step2_solver.set_objective(std::move(s.step2.A), s.step2.weights);
-    s.step2_solver.set_near_null_space(modes, 2);
-    s.step2_solver.set_complex_pairs(true);
-    s.step2_solver.share_analysis(&s.step1_solver);
+  ResolvedRequest resolved = resolve(request, s.graph.clip, s.crowd_ids);
+  const std::size_t free_vertices = s.graph.vertex_count() - resolved.handle_vertices.size();
+  if (uses_iterative_method(options, free_vertices)) {
+    s.steps = std::make_unique<IterativeSteps>(s.graph, s.features, options);
+  } else {
+    s.steps = std::make_unique<DirectSteps>(s.features, s.graph.clip.positions, options);
   }
-  s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
+  s.apply(std::move(resolved), request);
 
   Report& r = s.report;
   r.samples = s.graph.sample_count();
@@ -222,6 +235,7 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
   r.temporal_features = s.features.temporal.size();
   r.spatiotemporal_features = s.features.spatiotemporal.size();
   r.left_out = s.graph.clip.left_out;
+  s.steps->describe(r);
   r.graph_seconds = seconds_since(start);
 }
 
@@ -229,60 +243,16 @@ Editor::~Editor() = default;
 
 void Editor::precompute() {
   State& s = *state_;
-  const auto start = Clock::now();
-  s.in_user_terms([&] {
-    // Both steps' Q_FF have one pattern (the same features, the same pins): step 2 copies step 1's symbolic
-    // analysis (ordering and supernodes) before either is factorised, so only symbols are copied.
-    s.step1_solver.analyze();
-    if (s.options.scale_compensation) s.step2_solver.analyze();
-    s.step1_solver.precompute();
-    if (s.options.scale_compensation) s.step2_solver.precompute();
-    // Step 1's b never changes, so its Q_FF⁻¹ r_b (one back-substitution, which the solver keeps) is part of the
-    // precompute: every drag, the first included, then costs step 1 a dense product only (measured at 1,000
-    // agents: the first drag's step 1 took 1.1 s, the next ones 0.05 s).
-    if (s.step1_solver.precomputes_basis()) (void)s.step1_solver.solve_in_basis(s.step1.b, s.current.handle_coordinates, s.current.d);
-  });
-  s.report.precompute_seconds = seconds_since(start);
-  s.report.analyze_seconds = s.step1_solver.report().analyze_seconds;
-  s.report.factorize_seconds = s.step1_solver.report().factorize_seconds;
-  if (s.options.scale_compensation) {
-    s.report.analyze_seconds += s.step2_solver.report().analyze_seconds;
-    s.report.factorize_seconds += s.step2_solver.report().factorize_seconds;
-  }
-  s.report.factorization = s.step1_solver.report().factorization.method;
-  s.report.fallback = s.step1_solver.report().factorization.fallback_reason;
-  s.report.factor_nonzeros = s.step1_solver.report().factorization.factor_nonzeros +
-                             (s.options.scale_compensation ? s.step2_solver.report().factorization.factor_nonzeros : 0.0);
-  s.report.reciprocal_condition = s.step1_solver.report().factorization.reciprocal_condition;
-  if (s.options.scale_compensation) {
-    const double step2 = s.step2_solver.report().factorization.reciprocal_condition;
-    if (step2 > 0 && (s.report.reciprocal_condition <= 0 || step2 < s.report.reciprocal_condition)) s.report.reciprocal_condition = step2;
-  }
-  s.update_counts();
+  s.in_user_terms([&] { s.steps->precompute(s.current); });
+  s.steps->describe(s.report);
 }
 
 const Eigen::Matrix<double, Eigen::Dynamic, 2>& Editor::deform(const Request& request) {
   State& s = *state_;
   s.apply(resolve(request, s.graph.clip, s.crowd_ids), request);
-  if (!s.step1_solver.is_ready() || (s.options.scale_compensation && !s.step2_solver.is_ready())) precompute();
-  const auto start = Clock::now();
-  // Pins as coordinates in the handles' basis (request.h): step 1's b never changes, so a drag costs it no
-  // back-substitution; step 2's b does (the fitted triangles): one back-substitution.
-  const Eigen::VectorXd& pins = s.current.handle_coordinates;
-  s.x1 = as_positions(s.in_user_terms([&] { return s.step1_solver.solve_in_basis(s.step1.b, pins, s.current.d); }));
-  s.report.max_constraint_residual = s.step1_solver.report().max_constraint_residual;
-  s.report.step1_seconds = seconds_since(start);
-  if (s.options.scale_compensation) {
-    const auto fit_start = Clock::now();
-    set_step2_targets(s.features, s.graph.clip.positions, s.x1, s.step2.b);
-    s.report.fit_seconds = seconds_since(fit_start);
-    s.x2 = as_positions(s.in_user_terms([&] { return s.step2_solver.solve_in_basis(s.step2.b, pins, s.current.d); }));
-    s.report.max_constraint_residual = std::max(s.report.max_constraint_residual, s.step2_solver.report().max_constraint_residual);
-  } else {
-    s.x2 = s.x1;
-  }
-  s.report.solve_seconds = seconds_since(start);
-  s.update_counts();
+  if (!s.steps->is_ready()) precompute();
+  s.in_user_terms([&] { s.steps->solve(s.current, s.x1, s.x2, s.report); });
+  if (s.options.solver.compare_direct) s.compare_direct();
   return s.x2;
 }
 

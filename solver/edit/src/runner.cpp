@@ -103,6 +103,14 @@ void describe(ReportWriter& w, const Run& run) {
   w.seconds("solve_s", r.solve_seconds);
   // Pins, drags and constraints on every written frame they cover (velocity: |Δp − v Δt|).
   w.number("max_constraint_residual_m", std::max(r.max_constraint_residual, r.max_output_residual));
+  // How the global systems were solved (SolverOptions::method, "auto" resolved); the iterative method's work and
+  // the error it estimates it left; with solver.compare_direct, the distance to the direct solve (−1: not compared).
+  w.text("method", r.method);
+  w.count("iterations", static_cast<std::size_t>(r.iterations));
+  w.count("precompute_iterations", static_cast<std::size_t>(r.precompute_iterations));
+  w.number("solver_error_m", r.solver_error_m);
+  w.count("coarse_size", r.coarse_size);
+  w.number("direct_difference_m", r.direct_difference_m);
   if (!result.boundary) return;
   w.count("parts", static_cast<std::size_t>(r.parts));
   w.count("region_parts", static_cast<std::size_t>(r.region_parts));

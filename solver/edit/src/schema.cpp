@@ -50,7 +50,10 @@ void describe(OptionBinder& b, Options& o) {
   describe_weights(b, o.alpha, o.beta, o.alpha_prime, o.beta_prime);
   b.field({.key = "scale_compensation", .help = "step 2 (Eq. 8–10); false keeps step 1's result"}, o.scale_compensation);
   b.section("features", [&](OptionBinder& f) { describe(f, o.features); });
-  b.section("solver", [&](OptionBinder& s) { linalg::describe(s, o.solver); });
+  b.section("solver", [&](OptionBinder& s) {
+    linalg::describe(s, o.solver);
+    linalg::describe_method(s, o.solver);
+  });
   b.section("local", [&](OptionBinder& l) {
     std::int64_t parts = o.local.parts;
     l.field({.key = "parts", .range = Range::closed(0, 1e9), .flag = "--local-parts",

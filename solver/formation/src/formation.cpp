@@ -4,6 +4,7 @@
 
 #include "collision.h"
 #include "dense.h"
+#include "facing.h"
 #include "hierarchy.h"
 #include "matching.h"
 #include "position_group.h"
@@ -39,6 +40,16 @@ void check_options(const Options& o) {
   require(o.auto_cluster_size >= 2,
           "formation.auto_cluster_size: " + std::to_string(o.auto_cluster_size) + " must be at least 2 (items per group)");
   require(std::isfinite(o.radius_m) && o.radius_m >= 0, "formation.radius: " + std::to_string(o.radius_m) + " must be ≥ 0 (metres)");
+  const FacingOptions& f = o.facing;
+  require(std::isfinite(f.smoothing_s) && f.smoothing_s >= 0,
+          "formation.facing.smoothing: " + std::to_string(f.smoothing_s) + " must be a finite number ≥ 0 (seconds)");
+  require(std::isfinite(f.rule.standing_speed) && f.rule.standing_speed > 0,
+          "formation.facing.standing_speed: " + std::to_string(f.rule.standing_speed) + " must be a finite number > 0 (m/s)");
+  require(std::isfinite(f.rule.running_speed) && f.rule.running_speed > f.rule.standing_speed,
+          "formation.facing.running_speed: " + std::to_string(f.rule.running_speed) +
+              " must be a finite number above standing_speed " + std::to_string(f.rule.standing_speed) + " (m/s)");
+  require(std::isfinite(f.gravity_mps2) && f.gravity_mps2 > 0,
+          "formation.facing.gravity: " + std::to_string(f.gravity_mps2) + " must be a finite number > 0 (m/s²)");
   const CollisionOptions& c = o.collision;
   if (!c.enabled) return;
   auto positive = [&](double v, const char* key, const char* unit) {
@@ -77,6 +88,18 @@ void check_problem(const Problem& p) {
         if (!std::isfinite(key.positions(i, a)))
           throw InputError(what + ": individual " + std::to_string(i) + " has a non-finite coordinate");
     if (!std::isfinite(key.time_s)) throw InputError(what + ": time is not finite");
+    if (!key.facings.empty() && static_cast<Eigen::Index>(key.facings.size()) != n)
+      throw InputError(what + " gives " + std::to_string(key.facings.size()) + " facings for " + std::to_string(n) +
+                       " individuals; give one per individual or none");
+    for (std::size_t i = 0; i < key.facings.size(); ++i) {
+      const Eigen::Vector4d q = key.facings[i].coeffs();
+      if (!q.allFinite() || std::abs(q.norm() - 1.0) > orientation_tolerance) {
+        std::ostringstream s;
+        s << what << ": individual " << i << " has facing (" << q[0] << ", " << q[1] << ", " << q[2] << ", " << q[3]
+          << "), expected a finite unit quaternion (x, y, z, w)";
+        throw InputError(s.str());
+      }
+    }
     if (k > 0 && !(key.time_s > p.keyframes[k - 1].time_s)) {
       std::ostringstream s;
       s << what << ": time " << key.time_s << " s is not after keyframe " << k - 1 << "'s " << p.keyframes[k - 1].time_s
@@ -210,8 +233,12 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     for (const Keyframe& k : input.keyframes) raw.push_back(k.positions);
     result.correspondence = match_keyframes(raw, options.orientation, options.isotropy_tolerance);
     for (std::size_t k = 1; k < k_count; ++k)
-      for (int i = 0; i < n; ++i)
-        problem.keyframes[k].positions.row(i) = input.keyframes[k].positions.row(result.correspondence[k][static_cast<std::size_t>(i)]);
+      for (int i = 0; i < n; ++i) {
+        const int row = result.correspondence[k][static_cast<std::size_t>(i)];
+        problem.keyframes[k].positions.row(i) = input.keyframes[k].positions.row(row);
+        if (!input.keyframes[k].facings.empty())
+          problem.keyframes[k].facings[static_cast<std::size_t>(i)] = input.keyframes[k].facings[static_cast<std::size_t>(row)];
+      }
   } else {
     result.correspondence.assign(k_count, std::vector<int>(static_cast<std::size_t>(n)));
     for (auto& c : result.correspondence)
@@ -366,6 +393,12 @@ Result animate_formation(const Problem& input, const Options& options, Progress&
     result.collision = avoid_collisions(motion.positions, static_cast<std::size_t>(n), motion.times,
                                         timeline.keyframe_frame, options.collision, progress);
   }
+
+  // Facing and action, from the final paths (step 13).
+  std::vector<std::vector<Eigen::Quaterniond>> facings(k_count);
+  for (std::size_t k = 0; k < k_count; ++k)
+    for (const Eigen::Quaterniond& q : problem.keyframes[k].facings) facings[k].push_back(q.normalized());
+  fill_facings(motion, timeline, facings, d, options.facing);
   return result;
 }
 

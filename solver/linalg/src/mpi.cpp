@@ -52,6 +52,11 @@ void initialize() {
   PetscInitialized(&petsc_up);
   if (!petsc_up) {
     if (independent_ranks) PETSC_COMM_WORLD = MPI_COMM_SELF;
+    // PETSc would otherwise install its own handlers for SIGTERM, SIGINT, SIGSEGV, ... over the program's: an
+    // interrupted solve must reach the output's cleanup (io's AtomicOutput removes its temporary file and
+    // re-raises), not PETSc's handler, which prints a stack and aborts. Options may be set before initialising.
+    if (PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr) != 0)
+      throw NumericalError("PETSc: could not set -no_signal_handler");
     if (PetscInitializeNoArguments() != 0) throw NumericalError("PETSc: PetscInitialize failed");
     petsc_started = true;
     linalg::petsc::install_error_handler();

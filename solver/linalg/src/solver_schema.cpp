@@ -26,4 +26,27 @@ void describe(OptionBinder& b, SolverOptions& o) {
           o.schur_cache_megabytes);
 }
 
+void describe_method(OptionBinder& b, SolverOptions& o) {
+  b.choice({.key = "method", .flag = "--solver-method",
+            .help = "direct: the backend's factor; iterative: conjugate gradients, two-level preconditioner (eigen only); "
+                    "auto: direct up to auto_direct_vertices free vertices"},
+           o.method, {"auto", "direct", "iterative"});
+  b.field({.key = "auto_direct_vertices", .range = Range::closed(0, 1e15),
+           .help = "auto: the direct method up to this many free sample vertices, iterative beyond"},
+          o.auto_direct_vertices);
+  b.field({.key = "position_tolerance", .unit = "m", .range = Range::positive(),
+           .help = "iterative: conjugate gradients stop when the error they estimate is below this"},
+          o.position_tolerance);
+  b.field({.key = "coarse_agents", .range = Range::closed(1, 1e9), .help = "iterative: agents per group of the coarse space"},
+          o.coarse_agents);
+  b.field({.key = "coarse_samples", .range = Range::closed(1, 1e9),
+           .help = "iterative: samples between the coarse space's time nodes"},
+          o.coarse_samples);
+  b.field({.key = "coarse_functions", .range = Range::closed(4, 1e12),
+           .help = "iterative: coarse functions at most (4 per agent group and time node)"},
+          o.coarse_functions);
+  b.field({.key = "compare_direct", .help = "also solve each drag directly and report the largest difference (direct_difference_m)"},
+          o.compare_direct);
+}
+
 }  // namespace throng::linalg

@@ -46,6 +46,8 @@ void validate(const Options& o) {
   require_non_negative("obstacle_weight", o.obstacle_weight);
   if (o.trajectory_weight == 0) fail("trajectory_weight", 0, "> 0 (agents would never follow their path)");
   require_positive("time_step_s", o.time_step_s);
+  require_non_negative("direction_filter_s", o.direction_filter_s);
+  require_non_negative("max_acceleration_m_s2", o.max_acceleration_m_s2);
   require_positive("output_rate_hz", o.output_rate_hz);
   require_non_negative("duration_s", o.duration_s);
   require_positive("max_duration_s", o.max_duration_s);

@@ -39,6 +39,12 @@ void describe(OptionBinder& b, Options& o) {
     w.field({.key = "obstacle", .range = Range::non_negative(), .help = "avoidance of obstacles"}, o.obstacle_weight);
   });
   b.field({.key = "time_step", .unit = "s", .range = Range::positive(), .help = "Δt"}, o.time_step_s);
+  b.field({.key = "direction_filter", .unit = "s", .range = Range::non_negative(), .flag = "--direction-filter",
+           .help = "τ of the walking-direction filter: the walking velocity relaxes toward Eq. 21's over τ (0: the paper's rule)"},
+          o.direction_filter_s);
+  b.field({.key = "max_acceleration", .unit = "m/s²", .range = Range::non_negative(), .flag = "--max-acceleration",
+           .help = "with the filter: the walking velocity changes by at most this per second (0: no bound)"},
+          o.max_acceleration_m_s2);
   b.field({.key = "output_rate", .unit = "Hz", .range = Range::positive(), .help = "frames per second in the output"},
           o.output_rate_hz);
   b.field({.key = "duration", .unit = "s", .range = Range::non_negative(),

@@ -31,10 +31,12 @@ constexpr std::uint8_t walking = static_cast<std::uint8_t>(AgentStatus::walking)
 constexpr std::uint8_t arrived = static_cast<std::uint8_t>(AgentStatus::arrived);
 constexpr std::uint8_t removed = static_cast<std::uint8_t>(AgentStatus::removed);
 
-// The agents' state at one time: positions (metres), target index, status, and the side each agent goes round
-// the obstacle it is sliding along (+1 left, −1 right, 0 none). Structure of arrays.
+// The agents' state at one time: positions (metres), walking velocity (m/s, the direction filter's u),
+// target index, status, and the side each agent goes round the obstacle it is sliding along (+1 left, −1 right,
+// 0 none). Structure of arrays.
 struct State {
   std::vector<double> x, y;
+  std::vector<double> ux, uy;
   std::vector<std::uint32_t> k;
   std::vector<std::uint8_t> status;
   std::vector<std::int8_t> side;
@@ -215,6 +217,8 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   State& s0 = now();
   s0.x.resize(N);
   s0.y.resize(N);
+  s0.ux.assign(N, 0.0);
+  s0.uy.assign(N, 0.0);
   s0.k.resize(N);
   s0.status.assign(N, walking);
   s0.side.assign(N, 0);
@@ -366,6 +370,14 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   const double R = options.follow_radius_m;
   const double w_traj = options.trajectory_weight, w_avoid = options.avoid_weight, w_block = options.obstacle_weight;
   const double dt = options.time_step_s;
+  const bool filtered = options.direction_filter_s > 0;
+  const double relax = filtered ? -std::expm1(-dt / options.direction_filter_s) : 1.0;  // 1 − exp(−Δt/τ)
+  // A change of the walking velocity over one step, at most max_acceleration Δt long (sketch.h).
+  const double largest_change = options.max_acceleration_m_s2 > 0 ? options.max_acceleration_m_s2 * dt : 0.0;
+  auto bounded = [largest_change](const Eigen::Vector2d& change) -> Eigen::Vector2d {
+    const double n = change.norm();
+    return largest_change > 0 && n > largest_change ? Eigen::Vector2d(change * (largest_change / n)) : change;
+  };
   const bool remove_at_end = options.end_of_path == EndOfPath::remove;
   const bool has_obstacles = !obstacles.empty();
   // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
@@ -380,6 +392,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
     std::uint8_t status = s.status[j];
     std::int8_t side = 0;
     Eigen::Vector2d q = p;
+    Eigen::Vector2d u = Eigen::Vector2d::Zero();
 
     if (status == walking) {
       // Eq. 14: pull toward the target beyond R.
@@ -399,10 +412,17 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       // Eq. 16–17 (repulsion sign as read) and Eq. 20.
       Eigen::Vector2d force = pull + w_block * block;
       if (w_avoid > 0) force += w_avoid * agent_repulsion(slot, p, avoidance(j, k));
-      // Eq. 21–22: move v_k Δt along F; F = 0 stays.
+      // Eq. 21–22: move v_k Δt along F; F = 0 stays. Filtered (sketch.h): u relaxes toward v_k F/|F|.
       const double f = force.norm();
-      if (f > 0) q = p + (speed[k] * dt / f) * force;
+      if (!filtered) {
+        if (f > 0) q = p + (speed[k] * dt / f) * force;
+      } else {
+        const Eigen::Vector2d wanted = f > 0 ? Eigen::Vector2d((speed[k] / f) * force) : Eigen::Vector2d::Zero();
+        const Eigen::Vector2d before(s.ux[j], s.uy[j]);
+        q = p + dt * (before + bounded(relax * (wanted - before)));
+      }
       if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
+      if (filtered) u = (q - p) / dt;
       // Target advancement (after the move, as in the paper; plus "passed", see sketch.h).
       // With EndOfPath::stop, an agent also stops on reaching the crowd standing at the end (see sketch.h).
       bool joins = false;
@@ -424,12 +444,22 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
         if (w_avoid > 0) overlap += agent_repulsion(slot, p, avoidance(j, k));
         if (has_obstacles && w_block > 0) overlap += obstacles.push(p, t0);
         const double length = 0.5 * overlap.norm();
-        if (length > 0) q = p + (std::min(length, speed[k] * dt) / overlap.norm()) * overlap;
+        const Eigen::Vector2d room =
+            length > 0 ? Eigen::Vector2d((std::min(length, speed[k] * dt) / overlap.norm()) * overlap) : Eigen::Vector2d::Zero();
+        if (!filtered) {
+          q = p + room;
+        } else {  // the walking velocity left at arrival dies away; make-room moves are filtered alike (sketch.h)
+          const Eigen::Vector2d before(s.ux[j], s.uy[j]);
+          q = p + dt * (before + bounded(relax * (room / dt - before)));
+        }
         if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
+        if (filtered) u = (q - p) / dt;
       }
     }
     next.x[j] = q.x();
     next.y[j] = q.y();
+    next.ux[j] = u.x();
+    next.uy[j] = u.y();
     next.k[j] = k;
     next.status[j] = status;
     next.side[j] = side;

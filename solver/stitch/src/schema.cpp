@@ -2,6 +2,7 @@
 #include <throng/linalg/solver_schema.h>
 #include <throng/stitch/jobs.h>
 #include <throng/stitch/schema.h>
+#include <throng/timewarp/schema.h>
 
 #include <limits>
 
@@ -29,6 +30,7 @@ void describe(OptionBinder& b, Options& o) {
   b.field({.key = "scale_compensation", .help = "step 2 (Eq. 8–10); false keeps step 1's result"}, o.weights.scale_compensation);
   b.section("features", [&](OptionBinder& f) { describe(f, o.features); });
   b.section("solver", [&](OptionBinder& s) { linalg::describe(s, o.solver); });
+  b.section("guard", [&](OptionBinder& g) { timewarp::describe(g, o.guard); });
 }
 
 void describe(OptionBinder& b, MergeOptions& o) {

@@ -6,6 +6,7 @@
 #include <throng/linalg/spd_solver.h>
 #include <throng/stitch/schema.h>
 #include <throng/stitch/stitch.h>
+#include <throng/timewarp/guard.h>
 #include <throng/timewarp/spline.h>
 
 #include <Eigen/Geometry>
@@ -50,7 +51,10 @@ Feature averaged(const Feature& a, const Feature& b) {
 
 }  // namespace
 
-void validate(const Options& o) { check_options(describe, o, ""); }
+void validate(const Options& o) {
+  check_options(describe, o, "");  // every range, guard's too (schema.cpp)
+  timewarp::validate(o.guard, "guard");  // and the guard's rule between its two windows
+}
 
 double blend_weight(double distance, double window) noexcept {
   if (!(window > 0) || !detail::inside_window(distance, window)) return 0.0;
@@ -317,6 +321,22 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
       }
     }
   });
+  // Plausibility: the guard, with the clips themselves as the source (stitch.h "Plausibility").
+  report_to.update(0.95, "guarding speed and acceleration");
+  timewarp::Source source;
+  source.max_speed = std::max(timewarp::fastest_speed(first), timewarp::fastest_speed(second));
+  const std::vector<double> first_acceleration = timewarp::accelerations(first), second_acceleration = timewarp::accelerations(second);
+  source.acceleration.assign(T * n, 0.0);
+  for (std::size_t F = 0; F < T; ++F) {
+    for (std::size_t j = 0; j < n; ++j) {
+      source.acceleration[F * n + j] = F < J   ? first_acceleration[F * first.agent_count() + pa.agents[j]]
+                                       : F > J ? second_acceleration[(F - J) * second.agent_count() + partner[j]]
+                                               : 0.0;
+    }
+  }
+  timewarp::GuardResult guarded = timewarp::guard(out, source, options.guard);
+  out = std::move(guarded.crowd);
+  report.guard = guarded.report;
   report_to.update(1.0, "stitched");
   return result;
 }

@@ -104,6 +104,14 @@ void describe(ReportWriter& w, const StitchRun& run) {
     j.count("solved_samples", r.solved_samples);
     j.count("unknowns", r.unknowns);
     j.number("max_change_m", r.max_change);
+    // The plausibility guard after the solve (stitch.h "Plausibility"): whether it slowed the clip down, and
+    // the kinks left beyond the acceleration limit before and after its smoothing.
+    j.flag("guard_warped", r.guard.warped);
+    j.number("guard_largest_stretch", r.guard.largest_stretch);
+    j.count("guard_kinks_before", r.guard.kinks_before);
+    j.count("guard_kinks_after", r.guard.kinks_after);
+    j.number("guard_max_speed_m_s", r.guard.max_speed_after);
+    j.number("guard_max_acceleration_m_s2", r.guard.max_acceleration_after);
     j.seconds("solve_s", r.matching_seconds + r.graph_seconds + r.precompute_seconds + r.solve_seconds);
   });
 }

@@ -2,6 +2,8 @@
 
 #include <throng/core/errors.h>
 
+#include "laid_pose.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -37,6 +39,22 @@ Links links_of(const Tiling& tiling) {
 }
 
 }  // namespace
+
+PatchActions patch_actions(const PatchLibrary& library) {
+  PatchActions a;
+  a.table = standard_actions();
+  for (const PatchType& type : library.types) {
+    std::vector<std::int32_t>& of = a.of_fragment.emplace_back(type.fragments.size(), -1);
+    for (std::size_t f = 0; f < type.fragments.size(); ++f) {
+      if (!type.fragments[f].is_character()) continue;
+      const ActionKind kind{type.name, type.fragments[f].prop};
+      const auto it = std::find(a.table.begin(), a.table.end(), kind);
+      of[f] = static_cast<std::int32_t>(it - a.table.begin());
+      if (it == a.table.end()) a.table.push_back(kind);
+    }
+  }
+  return a;
+}
 
 std::size_t count_characters(const PatchLibrary& library, const Tiling& tiling) {
   const Links links = links_of(tiling);
@@ -110,11 +128,14 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
   };
 
   const Links links = links_of(tiling);
+  const PatchActions actions = patch_actions(library);
   struct Piece {
     std::size_t first_frame;
     Node head;
     std::size_t index;
     std::vector<Eigen::Vector2d> positions;  // one per frame from first_frame
+    std::vector<double> headings;            // one per frame from first_frame
+    std::vector<std::int32_t> actions;       // one per frame from first_frame
     double radius;
     std::vector<AgentPiece> fragments;
   };
@@ -138,6 +159,8 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
             // Walk the chain, gathering samples (shifted into their copies).
             std::vector<Eigen::Vector2d> pos;
             std::vector<double> times;
+            std::vector<double> heads;
+            std::vector<std::int32_t> acts;  // per sample: the action of the segment that ends there
             std::vector<std::pair<Node, std::pair<double, double>>> spans;
             double radius = 0;
             Node at = head;
@@ -152,6 +175,8 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
                 if (!times.empty() && t <= times.back()) continue;  // the shared sample at a join
                 pos.push_back(p.positions[s] + shift);
                 times.push_back(t);
+                heads.push_back(p.headings[s]);
+                acts.push_back(actions.of_fragment[inst.type][at.fragment.fragment]);
               }
               spans.push_back({at, {p.times.front() + tshift, p.times.back() + tshift}});
               const auto it = links.next.find(at.fragment);
@@ -163,7 +188,7 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
             }
             // Sample at the frames; split where the chain is absent.
             std::size_t k = 0;
-            Piece current{0, head, 0, {}, radius, {}};
+            Piece current{0, head, 0, {}, {}, {}, radius, {}};
             std::size_t count = 0;
             const auto close = [&](std::size_t last_frame) {
               if (current.positions.empty()) return;
@@ -173,21 +198,28 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
               }
               current.index = count++;
               pieces.push_back(std::move(current));
-              current = Piece{0, head, 0, {}, radius, {}};
+              current = Piece{0, head, 0, {}, {}, {}, radius, {}};
             };
             for (std::size_t fr = 0; fr < frames_total; ++fr) {
               const double t = frame_time(fr);
               bool present = false;
               Eigen::Vector2d q;
+              double h = 0;
+              std::int32_t action = -1;
               if (t >= times.front() && t <= times.back()) {
                 while (k + 1 < times.size() && times[k + 1] < t) ++k;
-                const double u = k + 1 < times.size() ? (t - times[k]) / (times[k + 1] - times[k]) : 0.0;
-                q = k + 1 < times.size() ? Eigen::Vector2d(pos[k] + std::clamp(u, 0.0, 1.0) * (pos[k + 1] - pos[k])) : pos[k];
+                const bool segment = k + 1 < times.size();
+                const double u = segment ? (t - times[k]) / (times[k + 1] - times[k]) : 0.0;
+                q = segment ? Eigen::Vector2d(pos[k] + std::clamp(u, 0.0, 1.0) * (pos[k + 1] - pos[k])) : pos[k];
+                h = segment ? heading_between(heads[k], heads[k + 1], std::clamp(u, 0.0, 1.0)) : heads[k];
+                action = acts[segment ? k + 1 : k];
                 present = inside(q);
               }
               if (present) {
                 if (current.positions.empty()) current.first_frame = fr;
                 current.positions.push_back(q);
+                current.headings.push_back(h);
+                current.actions.push_back(action);
               } else if (!current.positions.empty()) {
                 close(fr - 1);
               }
@@ -206,10 +238,17 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
   CrowdMotion& m = out.motion;
   m = CrowdMotion::with_shape(frames_total, pieces.size());
   for (std::size_t f = 0; f < frames_total; ++f) m.times[f] = frame_time(f);
+  m.orientations.assign(frames_total * pieces.size() * 4, absent);
+  m.actions.assign(frames_total * pieces.size(), -1);
+  m.action_table = actions.table;
   for (std::size_t n = 0; n < pieces.size(); ++n) {
     const Piece& p = pieces[n];
     m.radii[n] = p.radius;
-    for (std::size_t j = 0; j < p.positions.size(); ++j) m.position(p.first_frame + j, n) = Eigen::Vector3d(p.positions[j].x(), p.positions[j].y(), 0);
+    for (std::size_t j = 0; j < p.positions.size(); ++j) {
+      m.position(p.first_frame + j, n) = Eigen::Vector3d(p.positions[j].x(), p.positions[j].y(), 0);
+      m.orientation(p.first_frame + j, n) = yaw_orientation(p.headings[j]);
+      m.action(p.first_frame + j, n) = p.actions[j];
+    }
     out.pieces.push_back(p.fragments);
   }
   return out;

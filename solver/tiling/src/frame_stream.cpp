@@ -1,6 +1,7 @@
 #include "frame_stream.h"
 
 #include "bytes.h"
+#include "laid_pose.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,7 @@
 namespace throng::tiling {
 
 FrameStream::FrameStream(const PatchLibrary& library, const Region& region, double frame_rate_hz)
-    : library_(library), region_(region), period_(periods(region)), rate_(frame_rate_hz) {
+    : library_(library), actions_(patch_actions(library)), region_(region), period_(periods(region)), rate_(frame_rate_hz) {
   // As lay_out: frames from t0 every 1 / rate, the last at t1 (the time axis is not periodic here).
   frames_ = static_cast<std::size_t>(std::floor((region.t1 - region.t0) * rate_ + 1e-9)) + 1;
   for (std::size_t a = 0; a < 3; ++a) {
@@ -37,7 +38,8 @@ void FrameStream::take(Walk& walk, const Node& node) {
   for (std::size_t s = 0; s < p.times.size(); ++s) {
     const double t = p.times[s];
     if (!walk.samples.empty() && t <= walk.samples.back().time) continue;  // the shared sample at a join
-    walk.samples.push_back({p.positions[s] + shift, t});
+    walk.samples.push_back({p.positions[s] + shift, t, p.headings[s],
+                            actions_.of_fragment[inst.type][node.fragment.fragment]});
   }
   walk.spans.push_back({node, {p.times.front(), p.times.back()}});
   walk.last = node;
@@ -104,9 +106,14 @@ void FrameStream::emit(std::size_t end, CrowdMotion& frames, std::vector<std::ve
     return true;
   };
   // Per agent of these frames: (frame, position), and the walk it belongs to.
-  std::map<std::int64_t, std::vector<std::pair<std::size_t, Eigen::Vector2d>>> tracks;
+  struct Pose {
+    Eigen::Vector2d position;
+    double heading;
+    std::int32_t action;
+  };
+  std::map<std::int64_t, std::vector<std::pair<std::size_t, Pose>>> tracks;
   std::map<std::int64_t, std::size_t> walk_of;
-  std::vector<std::pair<std::size_t, Eigen::Vector2d>> present;  // (walk, position) at this frame
+  std::vector<std::pair<std::size_t, Pose>> present;  // (walk, pose) at this frame
   std::vector<std::size_t> opened;
   for (std::size_t f = begin; f < end; ++f) {
     const double t = frame_time(f);
@@ -121,13 +128,17 @@ void FrameStream::emit(std::size_t end, CrowdMotion& frames, std::vector<std::ve
         walk.samples.erase(walk.samples.begin(), walk.samples.begin() + static_cast<std::ptrdiff_t>(k));
         const Sample& a = walk.samples[0];
         Eigen::Vector2d q = a.position;
+        double heading = a.heading;
+        std::int32_t action = a.action;
         if (walk.samples.size() > 1) {
           const Sample& b = walk.samples[1];
           const double u = (t - a.time) / (b.time - a.time);
           q = a.position + std::clamp(u, 0.0, 1.0) * (b.position - a.position);
+          heading = heading_between(a.heading, b.heading, std::clamp(u, 0.0, 1.0));
+          action = b.action;
         }
         if (inside(q)) {
-          present.emplace_back(w, q);
+          present.emplace_back(w, Pose{q, heading, action});
           if (walk.agent < 0) opened.push_back(w);
           continue;
         }
@@ -150,6 +161,9 @@ void FrameStream::emit(std::size_t end, CrowdMotion& frames, std::vector<std::ve
 
   // The frames: agents by id.
   frames = CrowdMotion::with_shape(end - begin, tracks.size());
+  frames.orientations.assign((end - begin) * tracks.size() * 4, absent);
+  frames.actions.assign((end - begin) * tracks.size(), -1);
+  frames.action_table = actions_.table;
   pieces.assign(tracks.size(), {});
   for (std::size_t f = begin; f < end; ++f) frames.times[f - begin] = frame_time(f);
   std::size_t n = 0;
@@ -157,7 +171,11 @@ void FrameStream::emit(std::size_t end, CrowdMotion& frames, std::vector<std::ve
     const Walk& walk = walks_[walk_of.at(agent)];
     frames.ids[n] = agent;
     frames.radii[n] = walk.radius;
-    for (const auto& [f, q] : track) frames.position(f - begin, n) = Eigen::Vector3d(q.x(), q.y(), 0);
+    for (const auto& [f, pose] : track) {
+      frames.position(f - begin, n) = Eigen::Vector3d(pose.position.x(), pose.position.y(), 0);
+      frames.orientation(f - begin, n) = yaw_orientation(pose.heading);
+      frames.action(f - begin, n) = pose.action;
+    }
     const double a = frame_time(track.front().first), b = frame_time(track.back().first);
     for (const auto& [node, span] : walk.spans) {
       if (span[1] >= a && span[0] <= b) pieces[n].push_back({node.fragment, node.copy});
@@ -220,6 +238,8 @@ void FrameStream::save(std::vector<std::byte>& out) const {
       w.put(s.position.x());
       w.put(s.position.y());
       w.put(s.time);
+      w.put(s.heading);
+      w.put(s.action);
     }
     w.put(walk.radius);
     w.put<std::uint64_t>(walk.runs);
@@ -270,11 +290,14 @@ void FrameStream::load(const std::vector<std::byte>& in, std::size_t& at) {
   for (Walk& walk : walks_) {
     walk.head = r.get<Node>();
     walk.last = r.get<Node>();
-    walk.samples.resize(r.count(3 * sizeof(double)));
+    walk.samples.resize(r.count(4 * sizeof(double) + sizeof(std::int32_t)));
     for (Sample& s : walk.samples) {
       s.position.x() = r.get<double>();
       s.position.y() = r.get<double>();
       s.time = r.get<double>();
+      s.heading = r.get<double>();
+      s.action = r.get<std::int32_t>();
+      if (s.action < 0 || static_cast<std::size_t>(s.action) >= actions_.table.size()) r.fail();
     }
     walk.radius = r.get<double>();
     walk.runs = r.get<std::uint64_t>();

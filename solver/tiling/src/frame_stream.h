@@ -9,7 +9,7 @@
 // yet passed, the last fragment copy taken, the run it is in. A walk is started when its head is delivered and
 // advanced frame by frame; it takes a fragment's successor when its samples run out and the successor, which
 // starts before the frame that needs it, has been delivered by then (a window's frames are only made once every
-// instance starting before its end is final).
+// instance starting before its end is final). Facings and actions as lay_out makes them.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -59,6 +59,8 @@ class FrameStream {
   struct Sample {
     Eigen::Vector2d position;
     double time;
+    double heading;
+    std::int32_t action;  // of the segment that ends here (lay_out's rule)
   };
   struct Walk {
     Node head;
@@ -79,6 +81,7 @@ class FrameStream {
   void start_walks(std::uint32_t id, const std::map<FragmentRef, Copy>& previous);
 
   const PatchLibrary& library_;
+  PatchActions actions_;
   Region region_;
   Eigen::Vector3d period_;
   double rate_;

@@ -131,7 +131,18 @@ struct Builder {
     return single(name, "", draw({0, 0}, 0, {{D(), v(), v(), angle}}, r(), o.radius_m, walking, walking));
   }
 
+  // A character carrying a box (or sitting on one) is this much wider, and carries the prop "box".
+  [[nodiscard]] double carry_radius() const { return o.radius_m + 0.1; }
+
   PatchType make(const std::string& name) const {
+    PatchType t = draw_type(name);
+    for (Fragment& f : t.fragments) {
+      if (f.is_character() && f.radius_m == carry_radius()) f.prop = "box";
+    }
+    return t;
+  }
+
+  PatchType draw_type(const std::string& name) const {
     const double R = o.radius_m;
     if (name == "walk") return walk(name, v(), "");
     if (name == "walk_slow") return walk(name, 0.7 * v(), "slow");
@@ -220,7 +231,7 @@ struct Builder {
       return t;
     }
     // The box patches: a character carrying a box is a wider capsule; a box standing on the ground is a prop.
-    const double carry_r = R + 0.1;
+    const double carry_r = carry_radius();
     if (name == "box_pickup") {
       PatchType t;
       t.name = name;

@@ -26,7 +26,7 @@ namespace throng::tiling {
 namespace {
 
 constexpr double minus_infinity = -std::numeric_limits<double>::infinity();
-constexpr char magic[8] = {'T', 'H', 'R', 'W', 'I', 'N', '0', '1'};
+constexpr char magic[8] = {'T', 'H', 'R', 'W', 'I', 'N', '0', '2'};  // 02: samples carry heading and action
 
 // An instance carried into the next window, with its id in the delivered tiling once it is final (−1 before).
 struct Carried {

@@ -22,4 +22,20 @@ void describe(OptionBinder& b, Options& o) {
           o.time_tolerance_s);
 }
 
+void describe(OptionBinder& b, GuardOptions& o) {
+  b.field({.key = "enabled", .help = "false: the output is left as it is (the paper's behaviour)"}, o.enabled);
+  b.field({.key = "max_speed_ratio", .range = Range::positive(), .help = "speed limit: this × the source's fastest speed"},
+          o.max_speed_ratio);
+  b.field({.key = "max_acceleration", .unit = "m/s²", .range = Range::positive(),
+           .help = "frames beyond this and beyond the source's own acceleration are kinks, smoothed"},
+          o.max_acceleration);
+  b.field({.key = "ramp_time", .unit = "s", .range = Range::positive(), .help = "σ: how the warp's slow-down ramps in and out"},
+          o.ramp_time);
+  b.field({.key = "smoothing_time", .unit = "s", .range = Range::positive(), .help = "first half-width of a kink's smoothing window"},
+          o.smoothing_time);
+  b.field({.key = "max_window_time", .unit = "s", .range = Range::positive(),
+           .help = "the widest half-width tried (≥ smoothing_time)"},
+          o.max_window_time);
+}
+
 }  // namespace throng::timewarp

@@ -102,6 +102,12 @@ class Group {
   [[nodiscard]] Array<std::int64_t> read_int64(const std::string& name, int expected_rank = -1) const;
   [[nodiscard]] Array<std::int32_t> read_int32(const std::string& name, int expected_rank = -1) const;
   [[nodiscard]] std::vector<std::string> read_strings(const std::string& name) const;
+  /// One numeric member (`member`) of a 1-D compound dataset as doubles (HDF5 converts; int64 frame numbers and
+  /// ids are exact up to 2^53), with the same bounds as the numeric reads (the storage is checked for the whole
+  /// compound element). InputError "missing dataset", "is not a compound dataset", "has no member".
+  [[nodiscard]] Array<double> read_compound_member(const std::string& name, const std::string& member) const;
+  /// The member names of a compound dataset (empty for any other dataset).
+  [[nodiscard]] std::vector<std::string> compound_members(const std::string& name) const;
   [[nodiscard]] std::string read_scalar_string(const std::string& name) const;
 
   /// Hard link `target` (a path in this file) under `name` (H5MD shares step/time datasets between elements).
@@ -123,6 +129,8 @@ class Group {
   [[nodiscard]] std::optional<std::uint64_t> unsigned_attribute(const std::string& name) const;
   /// A single number (InputError when the attribute holds several values, none, or is not numeric).
   [[nodiscard]] std::optional<double> double_attribute(const std::string& name) const;
+  /// The same for an attribute of the dataset or group `object` below this one.
+  [[nodiscard]] std::optional<double> double_attribute_on(const std::string& object, const std::string& name) const;
 
   /// Attributes on a dataset or group below this one.
   void set_attribute_on(const std::string& object, const std::string& name, const std::string& value) const;

@@ -12,6 +12,11 @@
 // Species: agents of the k-th walking group get species k (1-based); agents in no group get 0.
 // Walls: map.xml's "thickness" attribute is a drawing width in pixels, not metres, so walls get
 // `wall_thickness` instead.
+// Frame rate and credit come from the content, never from the folder's name: the rows of the recordings throng
+// knows (ETH/BIWI eth 15 fps, hotel 25; UCY zara01, zara02, students03 25) are recognised by their row count,
+// agent count and first and last frame, whatever the folder is called; otherwise an info.txt beside obsmat.txt
+// that states the annotation's time step ("timestep of 0.4 seconds", as ETH ships it) gives the rate with the
+// rows' usual frame step; otherwise --fps is needed and no credit is known (give it: import_crowd's credit).
 #pragma once
 
 #include <throng/io/crowd_file.h>
@@ -23,23 +28,23 @@
 namespace throng {
 
 struct RealDatasetOptions {
-  double video_fps = 0.0;        ///< frames per second of the source video; 0: known value for the dataset folder
+  double video_fps = 0.0;        ///< frames per second of the source video; 0: the rate the content states
   double agent_radius = 0.25;    ///< metres, for every agent
   double wall_thickness = 0.1;   ///< metres, total width of map.xml's wall segments
+  bool groups = true;            ///< groups.txt beside obsmat.txt becomes species
+  bool map = true;               ///< map.xml beside obsmat.txt becomes the scene
 };
 
 /// Reads a dataset folder (or its obsmat.txt). Throws IoError (missing files; a folder, device or pipe where a
 /// file is expected), InputError naming file and line (malformed rows: every field must be a whole number,
 /// "1.5xyz" is refused; frame and id whole numbers from 0 to 2^53; NaN; an id repeated in one frame; a malformed
 /// map.xml), InputError with the estimate when the frames × agents arrays exceed `limits` (checked before they
-/// are allocated), ConfigError (unknown frame rate).
+/// are allocated), ConfigError (frame rate neither known from the content nor given, or given and contradicting
+/// the known one). Any spelling of the path: "obsmat.txt" from inside the folder, "folder/", ".", "./obsmat.txt".
 [[nodiscard]] CrowdFile import_real_dataset(const std::filesystem::path& folder_or_obsmat, const RealDatasetOptions& options,
                                             const ReadLimits& limits = {});
 
-/// The video frame rate of a known dataset folder name (eth 15; hotel, zara01, zara02, univ, students* 25), or 0.
-[[nodiscard]] double known_video_fps(const std::string& folder_name);
-
-/// The credit line for a known dataset folder (ETH/BIWI or UCY), as the data's README asks; empty if unknown.
-[[nodiscard]] std::string dataset_credit(const std::string& folder_name);
+/// map.xml's obstacles (walls `wall_thickness` wide, circles as pillars): for an obstacle map given on its own.
+[[nodiscard]] Scene read_obstacle_map(const std::filesystem::path& map_xml, double wall_thickness, const ReadLimits& limits = {});
 
 }  // namespace throng

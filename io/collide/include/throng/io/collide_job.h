@@ -5,16 +5,22 @@
 // throng/collide/schema.h, the method throng/collide/collide.h):
 //
 //   margin: 0                  # clearance = r_a + r_b + margin between agents, r + margin to an obstacle
-//   push_fraction: 0.1         # a push separates a pair by this fraction of its clearance (paper: 10 %)
+//   push_fraction: 0.1         # a push separates a pair by its depth plus this fraction of its clearance
+//   push_size: full            # full | fraction (push_fraction per push: the paper's 10 %)
 //   max_iterations: 10000      # solves at most
-//   spread: 15                 # frames over which a push fades along a trajectory (each side), ≥ 1
-//   velocity_weight: 1         # weight of velocity changes against the shape features (0: the paper's energy)
+//   smoothing_time: 1          # seconds a push fades over (0: spread and velocity_weight instead)
+//   smoothing_weight: 10       # the smoothing in time against the shape features, > 0
+//   catch_up_time: 8           # seconds: the same along the agent's own path
+//   spread: 15                 # smoothing_time 0: frames over which a push fades along a trajectory, ≥ 1
+//   velocity_weight: 1         # smoothing_time 0: velocity changes against the shape features (0: the paper's)
 //   pair_push: sideways        # sideways (across the pair's relative motion) | apart (along their offset: paper)
-//   obstacle_pull: sideways    # sideways (across the agent's motion, the way round) | nearest (nearest boundary)
+//   obstacle_pull: back        # back (the side it came from) | sideways (the way round) | nearest (paper)
 //   pin_ends: true             # every trajectory's first and last present frame stays where it is
 //   fixed_agents: [3, 8]       # ids of agents that must not move at all
 //   min_feature_length: 0.05   # ℓ of the temporal feature weights (throng/graph/features.h)
-//   max_displacement: 10       # metres a vertex may move from its input (a push beyond abandons its contact)
+//   max_displacement: 0        # metres a vertex may move from its input (0: 8 agent radii)
+//   max_speed_ratio: 1.25      # no agent faster than this × the input's fastest (0: no limit)
+//   max_acceleration: 8        # m/s², or the input's own where higher (0: no limit)
 //   contact_patience: 1000     # pushes of one contact without getting shallower before it is abandoned
 //   stall_iterations: 5000     # stop ("no progress") after this many iterations without fewer pushable contacts
 //   allow_remaining: false     # true: collisions left at the end are a warning, not exit 5

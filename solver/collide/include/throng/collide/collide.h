@@ -1,49 +1,70 @@
 // Collision repair of a crowd animation (Kwon, Lee, Lee, Takahashi, SIGGRAPH 2008, §6.1;
 // docs/METHODS.md §1.3): push trajectories apart, and out of obstacles, by small linear deformations
-// of the colliding trajectories until every clearance holds.
+// of the colliding trajectories until every clearance holds — and, beyond the paper, keep every agent's motion
+// plausible while doing it (see "Limits").
 //
 // Iteration. Find every contact (broad_phase.h: exact, every pair, every obstacle, one contact per colliding frame
 // interval, so a pair too close over many frames has many, and the deepest that can move is always among
 // them; after the first search incrementally, contact_tracker.h: only segments that moved are examined again,
 // with exactly the full search's result). Order them deepest first
 // (deficit = clearance − distance; ties by kind, then indices) and take each one whose trajectory vertices are
-// not yet used by a taken contact this iteration ("every disjoint collision in one solve", beyond the paper).
+// not yet used by a taken contact this iteration ("every disjoint collision in one solve", beyond the paper) and,
+// with smoothing_time T > 0, that lies at least T from every push already taken on the same trajectory: exact
+// pushes a few frames apart pull a trajectory to different places frame by frame (a kink at each), while one
+// push per T moves the whole stretch smoothly and clears the contact's neighbouring intervals with it.
 // For each taken contact the point of closest approach p(s) = (1 − s) v_i + s v_{i+1} of each trajectory gets
 // a prescribed displacement — a linear constraint on two temporally adjacent vertices, as in the paper:
-//  * two agents: each moves push_fraction·clearance/2 along ±n, so their separation grows by push_fraction
-//    (10 % in the paper) of the clearance; when one of them cannot move there (pinned), the other takes the
-//    whole push. Direction (`pair_push`): `apart` is their offset p_a − p_b (the paper's rule); `sideways`
-//    (default) is the part of the offset across their relative motion over the interval. Most contact intervals
-//    of a pair end before or start after its closest moment, where the offset points along the motion; pushing
-//    along it holds one agent back and then rushes it past the other (measured on the bump config: 1.75 → 8.6
-//    m/s at most with `apart`, 99th percentile 3.8; 6.5 m/s with `sideways`, 99th percentile 2.9). Zero offset:
-//    across their relative motion;
+//  * two agents: each moves half the separation along ±n; when one of them cannot move there (pinned, or held
+//    by the limits before), the other takes the whole. Separation (`push_size`): `full` (default) the deficit
+//    plus push_fraction of the clearance, so one push clears the contact; `fraction` push_fraction (10 % in
+//    the paper) of the clearance per iteration. Direction (`pair_push`): `apart` is their offset p_a − p_b (the
+//    paper's rule); `sideways` (default) is the part of the offset across their relative motion over the
+//    interval. Most contact intervals of a pair end before or start after its closest moment, where the offset
+//    points along the motion; pushing along it holds one agent back and then rushes it past the other. Zero
+//    offset: across their relative motion;
 //  * agent and obstacle: the point moves out to the clearance plus push_fraction·clearance/2. Direction
-//    (`obstacle_pull`): `nearest` moves it toward the nearest boundary point (the paper's rule); `sideways`
-//    (default) moves it across its own motion relative to the obstacle, to the nearer of the two sides — for a
-//    trajectory crossing a wall or a post this is the way round it (the paper's Figure 9 pulls "toward the
-//    opening"), and for a trajectory grazing an obstacle it equals `nearest`; an agent at rest relative to
-//    the obstacle uses `nearest`.
+//    (`obstacle_pull`): `back` (default) out along the obstacle's outward normal where the trajectory was last
+//    clear before the contact — the side it came from, so an agent that clips a wall or a post returns to its
+//    own side, never round the far end or through — when the trajectory is clear again after the contact on
+//    that same side (normals within 60°) or never; when it is clear again on another side (it walks past a
+//    post, or through the obstacle: the paper's Figure 9, a recording crossing a mapped wall), `sideways`; a
+//    trajectory that starts inside leaves by the side where it is first clear. `sideways` moves
+//    the point across its own motion relative to the obstacle, to the nearer of the two sides — the way round a
+//    wall or a post (the paper's Figure 9 pulls "toward the opening"); `nearest` toward the nearest boundary
+//    point (the paper's rule, which can take a point through a thin wall). An agent at rest relative to the
+//    obstacle uses `nearest`.
 // Then each trajectory with constraints is deformed on its own (the paper's "subgraph containing only the
 // vertices and motion edges of colliding trajectories": with only motion edges the subgraph falls apart into one
 // chain per trajectory, so the pushes, being prescribed per point, decouple by trajectory and solve in parallel).
 //
 // Deformation of one trajectory: the displacement d of its vertices minimises the temporal term of the editing
-// energy (throng/graph/features.h Eq. 6, features and weights measured once on the input trajectory), plus a
-// velocity term velocity_weight·w̄·Σ|d_{k+1} − d_k|² (w̄ the mean temporal weight; beyond the paper), plus an
-// anchor velocity_weight·w̄/spread² · |d|², with the pins fixed (d = 0) and the pushes met exactly (linear
-// equality constraints). Velocity and anchor balance at `spread` frames: a push fades as exp(−|k|/spread) each
-// side. Why the velocity term: the temporal features alone only penalise second differences of d, so a linear
-// ramp is free; two nearby pushes in opposite directions then start a ramp that only the anchor stops, far
-// away — measured without it (velocity_weight 0, anchor w̄/spread⁴): spread 30 on Figure 9 abandoned a contact
-// after a 10 m drift, spread 60 moved vertices 115 m at 1,400 m/s; with it, every spread stays within 0.5 m
-// (bump) and 2.2 m (Figure 9). Locality still matters: pushes at different moments undo each other when each
-// bends a whole trajectory. Spreads above 1,000 frames count as 1,000 (the anchor stays ≥ 1e-6 of the velocity
-// weight, so a trajectory without pins stays well conditioned; a push then moves it almost rigidly).
+// energy (throng/graph/features.h Eq. 6, features and weights measured once on the input trajectory) plus, beyond
+// the paper, a smoothing in time, with the pins fixed (d = 0) and the pushes met exactly (linear equality
+// constraints). Smoothing (smoothing_time T > 0, the default): λ w̄ Σ (|Δ²d|² + 2/n² |Δd|² + 1/n⁴ |d|²), w̄ the
+// mean temporal weight, λ = smoothing_weight, n = T / h frames (h the trajectory's mean frame interval) — the
+// discrete ∫ T⁴|d″|² + 2T²|d′|² + |d|² dt, whose response to a push of size p is (1 + |t|/T) e^{−|t|/T} p: no
+// kink at the pushed point (the paper's features alone bend at the frame scale), a velocity change of at most
+// p / (e T) and an acceleration of at most p / T². Along the agent's own path (the direction of its input motion
+// at each vertex) the velocity and anchor rows use n = catch_up_time / h instead: a push with a part along the
+// path holds the agent back or sends it ahead, and it catches up over catch_up_time rather than within T (which
+// would make it rush: measured on two groups of 150 crossing, catch_up_time 2 s left a contact held by the speed
+// limit, 8 s none). smoothing_time 0: instead a velocity term velocity_weight·w̄·Σ|d_{k+1} − d_k|² and an
+// anchor velocity_weight·w̄/spread² · |d|² (the frame-based energy of earlier versions; velocity_weight 0 with
+// push_size fraction, obstacle_pull nearest and the limits off is the paper's method): a push fades as
+// exp(−|k|/spread) each side, with a kink at the pushed point.
 //
-// Plausibility (report: input and output max speed and acceleration; the measurements on the shipped configs and
-// real data are in docs/commands/collide.md). Pushes are met exactly at contact points only, so a contact cleared
-// at the last iteration can leave a sharp turn; a speed limit is not a constraint of this method.
+// Limits (beyond the paper; the plausibility of docs/commands/check-motion.md). Each trajectory's deformation is
+// taken as far as it keeps: every vertex within max_displacement of its input (0: 8 agent radii — 2 m for
+// 0.25 m walkers; the bound follows the agents' size, not a constant of metres), every speed within
+// max_speed_ratio × the input crowd's fastest, and every acceleration within max_acceleration or the input's own
+// at that frame (+ 0.1 %: a push changes every frame a little). Each condition is |x + α y| ≤ L along the
+// deformation α d, a quadratic whose larger root bounds α; the deformation is applied as α d with the smallest
+// bound (≤ 1). With less than 5 % of it admissible it is dropped, and its contacts are held on that side: a pair
+// goes on pushing its other agent alone, and is abandoned when both are held; an obstacle contact is
+// abandoned. A contact that cannot be repaired within the limits is left and reported, never forced.
+//
+// Plausibility (report: input and output max speed and acceleration, limited_steps, held_steps; the measurements
+// on the shipped configs and real data are in docs/commands/collide.md and docs/commands/check-motion.md).
 //
 // Solver (src/track_solver.h). Each touched trajectory's system Q (features of its input shape, its pins) is
 // assembled and factorised once, when it is first pushed, and cached for the run; each iteration's pushes are
@@ -71,8 +92,8 @@
 // pillars), or no side can move. Stuck contacts are never pushed (pushing the free vertex of such an interval
 // cannot clear it and only drags the trajectory away). A contact is abandoned when pushing it makes no
 // progress: `contact_patience` pushes without its deficit (clearance − distance) reaching a new smallest value,
-// or a push whose deformation would carry any vertex more than `max_displacement` from its input (that
-// trajectory's deformation is then dropped for the iteration). Neither kind is pushed again.
+// when a pushed point would itself be carried beyond `max_displacement`, or when the limits hold its
+// deformation on every side that can move (see "Limits"). Neither kind is pushed again.
 //
 // End. The run stops when no contact is left (converged), when only stuck or abandoned contacts are left, when
 // `stall_iterations` iterations in a row did not reduce the smallest number of pushable contacts seen ("no
@@ -101,10 +122,14 @@
 
 namespace throng::collide {
 
-enum class ObstaclePull { sideways, nearest };
+/// Which way a point too close to an obstacle is moved out (see "Iteration" above).
+enum class ObstaclePull { back, sideways, nearest };
 
 /// Which way two colliding agents are pushed (see "Iteration" above).
 enum class PairPush { sideways, apart };
+
+/// How far two colliding agents are pushed apart at once (see "Iteration" above).
+enum class PushSize { full, fraction };
 
 /// How each trajectory's constrained system is solved (the same method, see "Solver" above; for benchmarks and
 /// tests).
@@ -113,15 +138,29 @@ enum class TrackMethod { eliminate, schur, linalg };
 struct Options {
   double margin = 0.0;            ///< metres added to r_a + r_b (pairs) and to r (obstacles), ≥ 0
   double push_fraction = 0.1;     ///< separation added per push, as a fraction of the clearance, in (0, 1]
-  ObstaclePull obstacle_pull = ObstaclePull::sideways;
+  PushSize push_size = PushSize::full;  ///< full: the deficit plus push_fraction; fraction: push_fraction alone
+  ObstaclePull obstacle_pull = ObstaclePull::back;
   PairPush pair_push = PairPush::sideways;
   std::size_t max_iterations = 10000;  ///< solves at most, ≥ 1
   bool pin_ends = true;                ///< pin every trajectory's first and last present frame
   std::vector<std::int64_t> fixed_agents;  ///< ids of agents that must not move at all
-  double spread = 15.0;               ///< frames over which a push fades along a trajectory (each side), ≥ 1
-  double velocity_weight = 1.0;       ///< weight of velocity changes against the temporal features, ≥ 0
+  /// T, seconds ≥ 0: a push fades over about T each side, as (1 + |t|/T) e^{−|t|/T} (see "Deformation"); 0: the
+  /// frame-based energy of `spread` and `velocity_weight` instead.
+  double smoothing_time = 1.0;
+  double smoothing_weight = 10.0;     ///< λ > 0: the smoothing in time against the temporal features
+  /// T_L, seconds: the same along the agent's own path (≥ smoothing_time counts; see "Deformation"): a push that
+  /// holds an agent back or sends it ahead is caught up over about T_L, not within T.
+  double catch_up_time = 8.0;
+  double spread = 15.0;               ///< smoothing_time 0 only: frames over which a push fades (each side), ≥ 1
+  double velocity_weight = 1.0;       ///< smoothing_time 0 only: velocity changes against the features, ≥ 0
   double min_feature_length = 0.05;   ///< ℓ of the temporal feature weights (metres, throng/graph/features.h)
-  double max_displacement = 10.0;     ///< metres any vertex may move from its input (a push beyond: abandoned), > 0
+  /// Metres any vertex may move from its input (see "Limits"), ≥ 0; 0: 8 radii of the agent (2 m for 0.25 m).
+  double max_displacement = 0.0;
+  /// No deformation makes an agent faster than this × the input crowd's fastest speed (see "Limits"); 0: no
+  /// speed limit.
+  double max_speed_ratio = 1.25;
+  /// m/s² ≥ 0: nor raises a frame's acceleration above this or the input's own there; 0: no limit.
+  double max_acceleration = 8.0;
   std::size_t contact_patience = 1000;  ///< pushes of one contact without a new smallest deficit before it is abandoned
   std::size_t stall_iterations = 5000;  ///< iterations without fewer pushable contacts than ever before: stop
   TrackMethod track_method = TrackMethod::eliminate;
@@ -147,6 +186,8 @@ struct Report {
   std::size_t abandoned_contacts = 0;  ///< of the remaining, those with an abandoned contact and no pushable one
   std::size_t constraints = 0;         ///< pushed points over the whole run
   std::size_t moved_agents = 0;        ///< agents whose trajectory changed
+  std::size_t limited_steps = 0;       ///< trajectory deformations shortened to keep within the limits
+  std::size_t held_steps = 0;          ///< deformations dropped (their contacts abandoned): no room within the limits
   /// Smallest gap over the result (metres), exact: every pair within 16 m of its clearance is examined; +∞ when
   /// no pair comes that close (or no two agents are present together).
   double min_pair_gap = 0;

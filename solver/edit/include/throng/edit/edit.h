@@ -178,6 +178,20 @@ struct Report {
   std::size_t region_boundary = 0;     ///< vertices outside the region pinned because features tie them to it
   int regions_built = 0;               ///< regions assembled and factorised so far (a cached region adds none)
   double partition_seconds = 0;        ///< METIS
+  // How the global systems were solved (Editor; SolverOptions::method):
+  std::string method;                  ///< "direct" or "iterative" ("auto" resolved)
+  int iterations = 0;                  ///< iterative: conjugate-gradient iterations of the last deform(), both steps
+  int precompute_iterations = 0;       ///< iterative: the most any precompute solve took (handle bases, constraint columns)
+  /// iterative: the estimated error left by the last deform()'s conjugate gradients (metres; linalg's
+  /// conjugate_gradients.h: the last step times ρ/(1 − ρ)), at most SolverOptions::position_tolerance (0: no
+  /// iteration was needed)
+  double solver_error_m = 0;
+  std::size_t coarse_size = 0;         ///< iterative: functions in the preconditioner's coarse space
+  /// With SolverOptions::compare_direct, the last deform() against the direct solve of the same request:
+  /// the largest distance between a sample's position and the direct one (metres; −1: not compared) and the
+  /// direct solve's own max_constraint_residual.
+  double direct_difference_m = -1;
+  double direct_constraint_residual_m = -1;
 };
 
 /// The stateful editor: build once, precompute once per handle set, deform per drag.

@@ -60,6 +60,9 @@
 //  12. The paper's baselines (Options::interpolation, Interpolation below): linear interpolation of positions and
 //      simple polar interpolation, in place of steps 2–6 and 8 for each group, for comparisons like its Figures
 //      3, 5 and 9.
+//  13. Beyond the paper (issue 13): every individual's facing and action (CrowdMotion::orientations, actions):
+//      the direction of travel, smoothed, with the standing rule; banking into turns in 3-D; facings a keyframe
+//      gives (Keyframe::facings), held at the keyframe and interpolated along the shorter arc (FacingOptions).
 //
 // Cost: eigen-decompositions O(n³) per keyframe, one symmetric eigenproblem O(n³) per rotation (the rotation's
 // planes are the eigenspaces of its symmetric part; clusters of nearly equal angles are resolved exactly by a
@@ -73,6 +76,7 @@
 #include <throng/core/progress.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <array>
 #include <cstdint>
@@ -160,6 +164,17 @@ struct CollisionOptions {
   int projection_sweeps = 200;               ///< Gauss–Seidel sweeps per frame to restore the minimum distance
 };
 
+/// How the individuals face and what they do (step 13; facing.h in the sources has the whole rule).
+struct FacingOptions {
+  double smoothing_s = 0.5;  ///< the direction of travel is the chord of the path over this window centred on the
+                             ///< frame (≥ 0; at least one frame each side): steady through the frame-to-frame
+                             ///< jitter of collision avoidance, late by nothing on a straight path
+  PathPoseRule rule;         ///< standing below rule.standing_speed (the facing is kept), running from
+                             ///< rule.running_speed (core's defaults: 0.3 and 2 m/s)
+  bool bank = true;          ///< 3-D formations (flying: the airshow) roll into turns as a coordinated turn
+  double gravity_mps2 = 9.81;  ///< g of the coordinated turn: tan(bank) = lateral acceleration / g
+};
+
 struct Options {
   double frame_rate_hz = 30.0;   ///< output frames per second; a keyframe interval Δt gets max(1, round(Δt·rate))
                                  ///< equal frames, so every keyframe time is a frame
@@ -179,6 +194,7 @@ struct Options {
                                      ///< automatically (see default_auto_cluster_size)
   double radius_m = 0.25;            ///< radius written for every individual
   CollisionOptions collision;
+  FacingOptions facing;
 };
 
 /// A pair of individuals (indices into the keyframes' rows, i.e. output agents).
@@ -213,6 +229,12 @@ struct Keyframe {
                               ///< orientation) may turn here instead of passing smoothly: velocities change
                               ///< direction at once, and size too when the two chords differ (as asked: a
                               ///< marching turn); no effect on the first and last keyframes
+  /// Empty (the individuals face where they travel), or one facing per individual (row order of `positions`):
+  /// a unit quaternion (x, y, z, w; |q| within orientation_tolerance of 1) turning the body frame (forward +x,
+  /// left +y, up +z) into the world — in 2-D a yaw about +z, e.g. a marching band facing the audience while it
+  /// walks sideways. Held exactly at this keyframe's frame (normalised), interpolated to the next keyframe's
+  /// (FacingOptions, step 13).
+  std::vector<Eigen::Quaterniond> facings;
 };
 
 /// A group of the hierarchy (§4.4). The root holds everyone; each individual is in exactly one group.

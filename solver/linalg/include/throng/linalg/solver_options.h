@@ -3,6 +3,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <cstddef>
 #include <string>
 
 namespace throng::linalg {
@@ -46,6 +47,32 @@ struct SolverOptions {
   /// doubles). Within it a solve with constraints costs one back-substitution and a dense product; beyond it,
   /// two back-substitutions and no cache.
   double schur_cache_megabytes = 512;
+
+  // --- how the group-motion editor solves its space-time systems (edit::Editor; other users ignore these) ---
+  /// "direct": both steps through ConstrainedLeastSquares on `backend` (eigen: CHOLMOD, exact to rounding);
+  /// "iterative": conjugate gradients with a two-level space-time preconditioner in this process (edit's
+  /// iterative_steps.h: positions within about position_tolerance of the exact solve, handles and constraints
+  /// met exactly); "auto": direct for systems of at most auto_direct_vertices free vertices (and always with
+  /// the petsc backend), iterative beyond. docs/commands/edit.md has the measurements behind the choice.
+  std::string method = "auto";
+  /// "auto" chooses direct up to this many free (unpinned) sample vertices. Measured crossover: below it the
+  /// direct factor costs under a second and is exact; above it the iterative method precomputes and drags faster.
+  std::size_t auto_direct_vertices = 20000;
+  /// Iterative: conjugate gradients stop when the error they estimate is left (the last step's largest vertex
+  /// move times ρ/(1 − ρ), linalg/conjugate_gradients.h) is below this (metres); measured against the direct
+  /// solve in docs/commands/edit.md. > 0.
+  double position_tolerance = 1e-3;
+  /// Iterative: agents per group of the coarse space (METIS over the agent graph), ≥ 1.
+  int coarse_agents = 25;
+  /// Iterative: samples between the coarse space's time nodes, ≥ 1.
+  int coarse_samples = 4;
+  /// Iterative: at most this many coarse functions (4 per agent group and time node; groups grow beyond
+  /// coarse_agents to stay within it): the coarse problem is factorised, at a cost that grows steeply with its
+  /// size (measured: 12,000 functions factorise in about a second). ≥ 4.
+  std::size_t coarse_functions = 16000;
+  /// Also solve each deform() directly and report the largest position difference (edit::Report
+  /// direct_difference_m): what the iterative method's error is. Costs the direct method's time and memory.
+  bool compare_direct = false;
 };
 
 }  // namespace throng::linalg

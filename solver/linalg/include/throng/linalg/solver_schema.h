@@ -17,4 +17,9 @@ namespace throng::linalg {
 /// `backend` has the flag --backend (the edit command's); the other keys have none.
 void describe(OptionBinder& b, SolverOptions& o);
 
+/// How the group-motion editor solves its systems (method, auto_direct_vertices, position_tolerance, coarse_*,
+/// compare_direct): part of edit's `solver:` block only (stitch solves directly and does not read them).
+/// `method` has the flag --solver-method.
+void describe_method(OptionBinder& b, SolverOptions& o);
+
 }  // namespace throng::linalg

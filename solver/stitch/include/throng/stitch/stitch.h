@@ -59,6 +59,15 @@
 //    or transform resamples afterwards). z is kept from the inputs. Velocities are dropped.
 //  * At the joint, if G (or G′) has fewer than 3 samples it has no temporal feature next to the joint and the other
 //    side's is used; with neither, Ḡ's own.
+//
+// Plausibility (beyond the paper; Options::guard, throng/timewarp/guard.h). Blending moves G's end and G′'s start
+// toward each other, so agents whose two clips disagree (formations that differ, a G′ placed elsewhere) walk
+// faster near the joint, and a short window makes the bend sharp. The output then goes through the guard with
+// the clips themselves as the source: speed limit 1.25 × the faster clip's fastest agent, acceleration limit
+// 3 m/s² or each clip's own at the frame it came from. Where some agent is too fast, one warp shared by all
+// agents slows the stitched clip down there (its frame count then exceeds t + t′ − 1; frames are resampled at
+// G's rate); frames still above the acceleration limit are smoothed over ±0.5 s. The report's `guard` says
+// what acted; guard.enabled = false gives the paper's output.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -68,6 +77,7 @@
 #include <throng/graph/motion_graph.h>
 #include <throng/linalg/solver_options.h>
 #include <throng/stitch/boundary.h>
+#include <throng/timewarp/guard.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -89,6 +99,7 @@ struct Options {
   FeatureOptions features;       ///< weight floor and degenerate-feature rule
   edit::FeatureWeights weights;  ///< α, β, α′, β′, scale compensation (Eq. 4, 9)
   linalg::SolverOptions solver;
+  timewarp::GuardOptions guard;  ///< the plausibility guard after the solve (see "Plausibility"); enabled: false off
 };
 
 /// Checks option values; ConfigError naming the option.
@@ -119,6 +130,7 @@ struct Report {
   double max_change = 0;               ///< metres: largest move of a vertex from the aligned input
   std::string factorization;
   double matching_seconds = 0, graph_seconds = 0, precompute_seconds = 0, solve_seconds = 0;
+  timewarp::GuardReport guard;         ///< what the guard did (its warp lengthens the clip when it acts)
 };
 
 struct Result {

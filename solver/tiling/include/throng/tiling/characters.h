@@ -13,6 +13,13 @@
 // non-periodic time axis and is left out on a periodic one (it is the first frame of the next copy).
 // Agent order: by first present frame, then by (copy, instance, fragment) of the chain's first fragment;
 // ids 0..N−1; radius: the largest radius of the chain's fragments; species 0.
+//
+// Facing and action (CrowdMotion::orientations, actions, action_table): the patch's own root headings, carried
+// through the instance's placement and deformation (Path::headings), interpolated between samples as the
+// positions are (turning the shorter way), as a yaw about +z: a turn in place turns the character by the patch's
+// angle, a standing character keeps its facing, a bowing row faces its partners. The action at a frame is the
+// patch (type name, fragment prop) of the path segment the frame lies on (the earlier patch at a frame exactly on
+// a join), an index into patch_actions(library).table. Absent frames: orientation NaN, action −1.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -41,6 +48,16 @@ struct Characters {
   CrowdMotion motion;
   std::vector<std::vector<AgentPiece>> pieces;  ///< per agent, the fragment copies it walks through
 };
+
+/// The action table of a library's laid characters: standard_actions() (walk, stand, run), then for every
+/// character fragment of every type, in library order, its (type name, prop) when not yet in the table (a "walk"
+/// patch without a prop is the standard walk). The same for every tiling of the library, so the windows of a long
+/// run share it.
+struct PatchActions {
+  std::vector<ActionKind> table;
+  std::vector<std::vector<std::int32_t>> of_fragment;  ///< per type, per fragment: index into table; −1 for props
+};
+[[nodiscard]] PatchActions patch_actions(const PatchLibrary& library);
 
 /// Lays out the characters of `tiling` (see the file comment). Throws ConfigError for a repeat count < 1 or
 /// > 1 on a non-periodic axis, or a frame rate ≤ 0.

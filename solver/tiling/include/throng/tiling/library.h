@@ -23,7 +23,8 @@
 //   box_sit         1  carrying → sitting    put the box down and sit on it
 //   sit             1  sitting → sitting     sit on the box
 //   box_stand       1  sitting → walking     stand up and walk away (prop: the box, left behind)
-// A character carrying a box (or sitting on one) is a capsule 0.1 m wider; boxes on the ground are props.
+// A character carrying a box (or sitting on one) is a capsule 0.1 m wider and has the prop "box" (Fragment::prop);
+// boxes on the ground are props.
 // Interpersonal constraints tie the characters of two-character and group patches at the frames where they
 // interact. No two capsules of a built-in patch (characters and props) ever overlap: the patches declare no
 // contact (patch.h, contact_pairs), so the tiler and the checker keep every pair of an instance clear.

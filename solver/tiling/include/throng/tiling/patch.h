@@ -37,6 +37,8 @@ struct Fragment {
   std::vector<double> times;
   std::size_t entry_class = 0;  ///< pose class of the first sample (index into PatchLibrary::pose_classes)
   std::size_t exit_class = 0;   ///< pose class of the last sample
+  std::string prop;             ///< what the character carries or uses in this patch ("box"); empty for nothing.
+                                ///< Names the laid character's action with the type's name (characters.h)
 
   [[nodiscard]] std::size_t sample_count() const noexcept { return times.size(); }
   [[nodiscard]] bool is_character() const noexcept { return kind == FragmentKind::character; }

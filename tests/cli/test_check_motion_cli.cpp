@@ -1,0 +1,160 @@
+// `throng check-motion` on the outputs of the shipped configs of collide, sketch, stitch and timewarp, at the
+// limits of issue 14 (docs/commands/check-motion.md): the output's max speed at most 1.25 × the input's (the
+// crowd the method read), or 1.25 × the job's stated speed for a generated crowd; acceleration 99th percentile
+// at most 3 m/s² and maximum at most 8 m/s², outside appearances (the checker measures nothing across a gap in
+// presence); no more contacts than the input had (collide). Large configs are shrunk (fewer agents).
+#include "test_paths.h"
+
+#include <throng/check/motion_check.h>
+#include <throng/io/crowd_file.h>
+
+#include <catch2/catch.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+using namespace throng;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Issue 14's acceleration limits, stated exactly (a flag is the limit, not the larger of it and the input's);
+// the turning rate is reported, not limited (issue 14's "Done when" does not bound it).
+const std::string acceleration_limits = " --max-acceleration 8 --acceleration-p99 3 --max-turning-rate 1e9 --turning-rate-p99 1e9";
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// The fastest speed of a crowd file, measured by the checker's library.
+double fastest(const fs::path& crowd) {
+  return check::measure(read_crowd_file(crowd).motion, {}, check::Settings{}).speed.max;
+}
+
+// Runs check-motion on `crowd` with `limits`; the report is in the failure message.
+void require_passes(const fs::path& crowd, const std::string& limits) {
+  std::string out;
+  const int code = test::run_command(test::throng_program().string() + " check-motion " + crowd.string() + limits, &out);
+  INFO(crowd.filename().string() << ":" << limits << "\n" << out);
+  CHECK(code == 0);
+}
+
+// A shipped config as a pipeline in `dir`: its relative paths made absolute (the source tree's), plot steps
+// dropped, `outputs` (step name → file) written in `dir`.
+void run_config(const std::string& config, const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& outputs) {
+  YAML::Node job = YAML::LoadFile((test::source_dir() / "configs" / config).string());
+  YAML::Node steps(YAML::NodeType::Sequence);
+  for (YAML::Node step : job["steps"]) {
+    if (step["step"].as<std::string>() == "plot") continue;
+    for (const char* key : {"job", "dataset"}) {
+      // Relative to the config's own folder (a job's paths are; the copy runs elsewhere).
+      if (step[key]) step[key] = (test::source_dir() / "configs" / step[key].as<std::string>()).string();
+    }
+    if (step["output"]) step["output"] = (dir / fs::path(step["output"].as<std::string>()).filename()).string();
+    for (const auto& [name, file] : outputs) {
+      if (step["name"] && step["name"].as<std::string>() == name) step["output"] = (dir / file).string();
+    }
+    steps.push_back(step);
+  }
+  job["steps"] = steps;
+  const fs::path path = dir / config;
+  std::ofstream(path) << job;
+  std::string out;
+  const int code = test::run_command("cd " + dir.string() + " && " + test::throng_program().string() + " --quiet run " + path.string(), &out);
+  INFO(config << "\n" << out);
+  REQUIRE(code == 0);
+}
+
+}  // namespace
+
+TEST_CASE("check-motion: the collide configs' repairs pass at issue 14's limits, against the crowd they repaired") {
+  struct Config {
+    const char* file;
+    int agents;          // per sketch step, 0: as shipped
+  };
+  for (const Config& c : {Config{"collide-bump.yaml", 0}, Config{"collide-narrow-opening.yaml", 0},
+                          Config{"collide-crossing.yaml", 40}}) {
+    INFO(c.file);
+    const fs::path dir = test::scratch_dir(std::string("cli_check_motion_") + c.file);
+    YAML::Node job = YAML::LoadFile((test::source_dir() / "configs" / c.file).string());
+    const std::size_t last = job["steps"].size() - 1;
+    job["steps"][last - 1]["output"] = (dir / "before.h5").string();
+    job["steps"][last]["output"] = (dir / "after.h5").string();
+    for (YAML::Node step : job["steps"]) {
+      if (c.agents > 0 && step["step"].as<std::string>() == "sketch") step["agents"]["count"] = c.agents;
+    }
+    std::ofstream(dir / c.file) << job;
+    // The crowd the collide step reads (the step before it) is the reference.
+    std::string out;
+    const int code = test::run_command("cd " + dir.string() + " && " + test::throng_program().string() + " --quiet run " + (dir / c.file).string(), &out);
+    INFO(out);
+    REQUIRE(code == 0);
+    // --reference: speed ≤ 1.25 × the input's fastest (or the ratio the job asks for: collide-crossing's dense
+    // weave asks for 2.5), contacts no more than the input's (pairs and obstacles).
+    const YAML::Node collide = job["steps"][last];
+    const double ratio = collide["max_speed_ratio"] ? collide["max_speed_ratio"].as<double>() : 1.25;
+    require_passes(dir / "after.h5", " --reference " + (dir / "before.h5").string() + " --speed-ratio " + number(ratio) + acceleration_limits);
+  }
+}
+
+// Runs a sketch config (with `shrink` flags) and checks its crowd against 1.25 × the job's stated speed.
+void check_sketch(const char* config, double stated_speed, const std::string& shrink) {
+  const fs::path dir = test::scratch_dir(std::string("cli_check_motion_") + config);
+  std::string out;
+  const int code = test::run_command(test::throng_program().string() + " --quiet" + shrink + " sketch " +
+                                         (test::source_dir() / "configs" / config).string() + " -o " + (dir / "out.h5").string(),
+                                     &out);
+  INFO(out);
+  REQUIRE(code == 0);
+  require_passes(dir / "out.h5", " --max-speed " + number(1.25 * stated_speed) + acceleration_limits);
+}
+
+// run-town as a pipeline in `dir`, keeping the clips, the stitched groups and the dragged, time-warped copy.
+void run_town(const fs::path& dir) {
+  run_config("run-town.yaml", dir,
+             {{"march_a", "march_a.h5"}, {"march_b", "march_b.h5"}, {"march_c", "march_c.h5"}, {"march_d", "march_d.h5"},
+              {"field_a", "field_a.h5"}, {"field_b", "field_b.h5"}, {"field_c", "field_c.h5"}, {"group_1", "group_1.h5"},
+              {"group_2", "group_2.h5"}, {"group_3", "group_3.h5"}, {"group_4", "group_4.h5"}, {"g1_copy", "g1_copy.h5"},
+              {"g1_warped", "g1_warped.h5"}});
+}
+
+TEST_CASE("check-motion: sketch-paper's crowd passes at issue 14's limits, against the job's stated speed") {
+  // The course is drawn at 1.2 m/s, its last part twice as fast (2.4 m/s).
+  check_sketch("sketch-paper.yaml", 2.4, "");
+}
+
+// Known gaps of issue 14 (measured 2026-12-02): these checks fail today, and the test says so ([!shouldfail]
+// passes only while they fail); when one is fixed, move it to the passing cases above.
+TEST_CASE("check-motion: KNOWN GAP sketch-large (shrunk) breaks max_acceleration: 10.75 > 8 m/s², 9 of 200 agents",
+          "[!shouldfail]") {
+  check_sketch("sketch-large.yaml", 1.2, " --set agents.count=200 --set duration=60");
+}
+
+TEST_CASE("check-motion: KNOWN GAP run-town's timewarp step (not guarded) leaves the dragged copy at 2.28 m/s, 11.2 m/s²",
+          "[!shouldfail]") {
+  const fs::path dir = test::scratch_dir("cli_check_motion_run_town_warp");
+  run_town(dir);
+  // The time warp restores the copy's speeds after the drag: against the copy it was dragged from.
+  require_passes(dir / "g1_warped.h5", " --max-speed " + number(1.25 * fastest(dir / "g1_copy.h5")) + acceleration_limits);
+}
+
+TEST_CASE("check-motion: run-town's stitched groups pass at issue 14's limits, against their clips") {
+  const fs::path dir = test::scratch_dir("cli_check_motion_run_town");
+  run_town(dir);
+  // Each stitched group: speed ≤ 1.25 × the faster of its two clips.
+  const std::vector<std::tuple<const char*, const char*, const char*>> groups = {
+      {"group_1", "march_a", "march_b"}, {"group_2", "field_a", "field_b"}, {"group_3", "march_c", "field_c"}, {"group_4", "field_b", "march_d"}};
+  for (const auto& [group, first, second] : groups) {
+    const double input = std::max(fastest(dir / (std::string(first) + ".h5")), fastest(dir / (std::string(second) + ".h5")));
+    require_passes(dir / (std::string(group) + ".h5"), " --max-speed " + number(1.25 * input) + acceleration_limits);
+  }
+}
