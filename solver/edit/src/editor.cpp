@@ -11,6 +11,7 @@
 #include <throng/edit/schema.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/least_squares.h>
+#include <throng/linalg/solver_schema.h>
 
 #include <algorithm>
 #include <chrono>
@@ -34,7 +35,12 @@ using Components = UnionFind;  // over graph vertices
 
 void validate(const Options& o) {
   check_options(describe, o, "");
-  // The one rule that ties two options together (the ranges and choices are edit's schema).
+  // The ranges are edit's schema; words are checked by their users (throng/core/schema.h), solver.method here.
+  const std::vector<std::string>& methods = linalg::method_names();
+  if (std::find(methods.begin(), methods.end(), o.solver.method) == methods.end()) {
+    throw ConfigError("solver.method '" + o.solver.method + "': expected auto, direct or iterative");
+  }
+  // The one rule that ties two options together.
   if (o.solver.method == "iterative" && o.solver.backend != "eigen") {
     throw ConfigError("solver.method iterative runs in this process on its own solvers: it needs solver.backend eigen, not '" +
                       o.solver.backend + "' (use solver.method direct to solve with " + o.solver.backend + ")");

@@ -7,6 +7,11 @@ const std::vector<std::string>& backend_names() {
   return names;
 }
 
+const std::vector<std::string>& method_names() {
+  static const std::vector<std::string> names{"auto", "direct", "iterative"};
+  return names;
+}
+
 void describe(OptionBinder& b, SolverOptions& o) {
   b.choice({.key = "backend", .flag = "--backend", .help = "sparse solver: eigen (CHOLMOD) or petsc (distributed over MPI ranks)"},
            o.backend, backend_names());
@@ -30,7 +35,7 @@ void describe_method(OptionBinder& b, SolverOptions& o) {
   b.choice({.key = "method", .flag = "--solver-method",
             .help = "direct: the backend's factor; iterative: conjugate gradients, two-level preconditioner (eigen only); "
                     "auto: direct up to auto_direct_vertices free vertices"},
-           o.method, {"auto", "direct", "iterative"});
+           o.method, method_names());
   b.field({.key = "auto_direct_vertices", .range = Range::closed(0, 1e15),
            .help = "auto: the direct method up to this many free sample vertices, iterative beyond"},
           o.auto_direct_vertices);

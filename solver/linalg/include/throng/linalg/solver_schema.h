@@ -14,6 +14,10 @@ namespace throng::linalg {
 /// build lacks is refused when a solver is made, with the reason.
 [[nodiscard]] const std::vector<std::string>& backend_names();
 
+/// SolverOptions::method's words ("auto", "direct", "iterative"): the schema's choice, checked where the method
+/// is used (edit::validate; check_options leaves words to their users).
+[[nodiscard]] const std::vector<std::string>& method_names();
+
 /// `backend` has the flag --backend (the edit command's); the other keys have none.
 void describe(OptionBinder& b, SolverOptions& o);
 
