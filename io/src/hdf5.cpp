@@ -3,6 +3,7 @@
 #include <throng/io/hdf5.h>
 #include <throng/io/input_file.h>
 
+#include "address_space_cap.h"
 #include "global_heap_check.h"
 
 #include <hdf5.h>
@@ -332,8 +333,15 @@ std::vector<std::string> read_string_data(hid_t object, bool attribute, const st
     context.budget.charge(bytes.value_or(UINT64_MAX), where, shape_text(e.dims) + " strings");
     Handle memory = string_type();
     std::vector<char*> raw(static_cast<std::size_t>(e.count), nullptr);
-    const herr_t status = attribute ? H5Aread(object, memory.id(), raw.data())
-                                    : H5Dread(object, memory.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data());
+    herr_t status = -1;
+    {
+      // The conversion may ask for what a damaged descriptor states (see address_space_cap.h): room for the
+      // heap's checked bytes twice over (conversion buffer and result) and libhdf5's own working memory.
+      const std::uint64_t heap = context.bounded ? context.heap_bytes : 0;
+      const AddressSpaceCap cap(checked_sum(checked_product(heap, 4).value_or(UINT64_MAX), 256ull << 20).value_or(UINT64_MAX));
+      status = attribute ? H5Aread(object, memory.id(), raw.data())
+                         : H5Dread(object, memory.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data());
+    }
     if (status < 0) throw InputError(where + ": cannot read string (" + hdf5_reason() + ")");
     for (char* s : raw) out.emplace_back(s ? s : "");
     H5Dvlen_reclaim(memory.id(), space.id(), H5P_DEFAULT, raw.data());

@@ -272,12 +272,17 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
     throw InputError(lib.where() + ": the library's datasets disagree in size");
   }
   const auto bad = [&](const std::string& what) { throw InputError(lib.where() + ": " + what); };
+  // The whole index checked before any of it is used: a type's range is only within 0..F when every later pair
+  // is ordered too (0, 100, 10 with F = 10 passes a pairwise check made type by type, then reads row 99).
+  if (type_fragments.front() < 0) bad("type_fragments not increasing");
+  for (std::size_t k = 0; k < K; ++k) {
+    if (type_fragments[k + 1] < type_fragments[k]) bad("type_fragments not increasing");
+  }
   for (std::size_t k = 0; k < K; ++k) {
     PatchType t;
     t.name = names[k];
     t.label = labels[k];
     t.preference = preference[k];
-    if (type_fragments[k] < 0 || type_fragments[k + 1] < type_fragments[k]) bad("type_fragments not increasing");
     for (auto f = static_cast<std::size_t>(type_fragments[k]); f < static_cast<std::size_t>(type_fragments[k + 1]); ++f) {
       Fragment fr;
       fr.kind = fragments[4 * f] == 0 ? FragmentKind::character : FragmentKind::prop;
