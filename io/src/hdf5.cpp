@@ -232,8 +232,18 @@ void check_dataset_storage(hid_t set, const std::string& where, const Extent& e,
         throw InputError(where + ": declares " + shape_text(e.dims) + " (" + format_bytes(*file_bytes) + ") but the file holds only " +
                          format_bytes(context.file_size) + ": truncated or damaged");
       }
-      return;
     }
+  }
+  // Contiguous (allocated) and compact data are read as one block of the layout's stated size: a layout smaller
+  // than the shape's bytes makes libhdf5 1.10 copy past its buffer (H5D__contig_readvv_sieve_cb, found by
+  // fuzz_tiling_data), so the two must agree before anything is read.
+  const bool one_block = layout == H5D_COMPACT || (layout == H5D_CONTIGUOUS && H5Dget_offset(set) != HADDR_UNDEF);
+  if (one_block) {
+    if (stored < *file_bytes) {
+      throw InputError(where + ": declares " + shape_text(e.dims) + " (" + format_bytes(*file_bytes) + ") but its layout stores " +
+                       format_bytes(stored) + ": damaged file");
+    }
+    if (layout == H5D_CONTIGUOUS) return;
   }
   const auto bound = checked_sum(checked_product(stored, ratio).value_or(UINT64_MAX), storage_slack_bytes).value_or(UINT64_MAX);
   if (*file_bytes > bound) {
