@@ -4,15 +4,27 @@
 
 namespace throng {
 
-void describe(OptionBinder& b, RealDatasetOptions& o) {
-  std::optional<double> fps;  // absent: the rate known for the dataset's folder
-  if (o.video_fps > 0) fps = o.video_fps;
+void describe(OptionBinder& b, ImportOptions& o) {
+  std::optional<double> fps;  // absent: the rate the data states
+  if (o.fps > 0) fps = o.fps;
   b.field({.key = "fps", .unit = "Hz", .range = Range::positive(), .flag = "--fps",
-           .help = "video frame rate of obsmat frame numbers (default: known per dataset)"},
+           .help = "frames per second of the frame numbers, where the data states no rate"},
           fps);
-  o.video_fps = fps.value_or(0.0);
+  o.fps = fps.value_or(0.0);
+  b.field({.key = "credit", .flag = "--credit", .help = "credit stored in the provenance, after the data's own"}, o.credit);
+  b.field({.key = "species_from", .flag = "--species-from",
+           .help = "none, groups.txt, a groups file, or a CSV column (default: the format's own)"},
+          o.species_from);
+  std::string obstacles = o.obstacles.string();
+  b.field({.key = "obstacles", .flag = "--obstacles", .help = "obstacles from a map.xml or a crowd file instead of the data's"},
+          obstacles);
+  o.obstacles = obstacles;
+  b.field({.key = "columns", .flag = "--columns", .help = "CSV column map time=t,id=pid,x=X,y=Y[,z=][,species=][,radius=]"},
+          o.columns);
+  b.choice({.key = "units", .flag = "--units", .help = "unit of the file's positions (default: the format's own)"}, o.units,
+           {"", "m", "cm", "mm"});
   b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .flag = "--radius", .help = "every agent's radius"},
-          o.agent_radius);
+          o.radius);
   b.field({.key = "wall_thickness", .unit = "m", .range = Range::non_negative(), .flag = "--wall-thickness",
            .help = "thickness of map.xml walls"},
           o.wall_thickness);

@@ -76,7 +76,7 @@ std::vector<CommandCase> commands() {
        {{"output.repeat", "region: {min: [0, 0], max: [12, 12], time: [0, 12], periodic: [true, true, true]}\n"
                           "library: {builtin: [locomotion]}\n"}},
        fields_of<tiling::Job>(tiling::describe)},
-      {"import", "nowhere -o out.h5", J::none, "", {}, fields_of<RealDatasetOptions>(describe)},
+      {"import", "nowhere -o out.h5", J::none, "", {}, fields_of<ImportOptions>(describe)},
       {"plot", "nowhere.h5 -o out.svg", J::none, "", {}, fields_of<PlotJob>(describe)},
       {"check-tiling", "nowhere.h5", J::none, "", {}, fields_of<CheckTilingJob>(describe)},
       {"check-motion", "nowhere.h5 --reference elsewhere.h5", J::none, "", {}, fields_of<check::Job>(check::describe)},

@@ -1,18 +1,19 @@
 // The option schemas (throng/core/schema.h) of the commands that read and write data files rather than run a
-// method: import (RealDatasetOptions, real_dataset.h) and plot (PlotOptions, plot.h, with the view and the
+// method: import (ImportOptions, import_crowd.h) and plot (PlotOptions, plot.h, with the view and the
 // tiling switch). Their steps of `throng run` read the same keys.
 #pragma once
 
 #include <throng/core/schema.h>
 #include <throng/io/plot.h>
-#include <throng/io/real_dataset.h>
+#include <throng/io/import_crowd.h>
 
 #include <string>
 
 namespace throng {
 
-/// `fps` (absent: the dataset's known rate), `radius`, `wall_thickness`.
-void describe(OptionBinder& b, RealDatasetOptions& o);
+/// import_crowd's options: `fps` (absent: the rate the data states), `credit`, `species_from`, `obstacles`,
+/// `columns`, `units`, `radius`, `wall_thickness`.
+void describe(OptionBinder& b, ImportOptions& o);
 
 /// What `throng plot` and the `plot` step draw.
 struct PlotJob {
