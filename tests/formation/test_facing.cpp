@@ -95,6 +95,40 @@ TEST_CASE("individuals face their direction of travel and keep their facing whil
   CHECK(standing > 0);
 }
 
+TEST_CASE("an individual whose path reverses turns about at most max_turn_rate, not in one frame") {
+  // A block walks 4 m along +x in 4 s and back in 4 s (tension 0: it stops at the middle keyframe).
+  const Eigen::MatrixXd start = block(2, 2, 1.5);
+  Problem p;
+  p.keyframes.push_back(Keyframe{0.0, start, {}});
+  p.keyframes.push_back(Keyframe{4.0, shifted(start, Eigen::RowVector2d(4, 0)), {}});
+  p.keyframes.push_back(Keyframe{8.0, start, {}});
+  Options o;
+  o.tension = 0.0;
+  o.frame_rate_hz = 25;
+  auto largest_turn = [&](const CrowdMotion& m) {
+    double most = 0;
+    for (std::size_t n = 0; n < m.agent_count(); ++n)
+      for (std::size_t f = 1; f < m.frame_count(); ++f)
+        most = std::max(most, std::abs(angle_between(yaw_of(m, f, n), yaw_of(m, f - 1, n))) / (m.times[f] - m.times[f - 1]));
+    return most;
+  };
+  SECTION("the default: half a turn per second, and it ends facing back along -x") {
+    const CrowdMotion m = animate_formation(p, o).motion;
+    require_unit_facings(m);
+    CHECK(largest_turn(m) <= pi + 1e-9);
+    CHECK(largest_turn(m) > 0.9 * pi);  // it does turn, at the limit
+    for (std::size_t n = 0; n < m.agent_count(); ++n) {
+      CHECK(std::abs(yaw_of(m, 25, n)) < 1e-9);                              // 1 s: walking out along +x
+      CHECK(std::abs(angle_between(yaw_of(m, 175, n), pi)) < 1e-9);         // 7 s: walking back along -x
+    }
+  }
+  SECTION("a higher limit turns faster: the travel facing flips within a frame without one") {
+    o.facing.max_turn_rate_rad_s = 1e6;
+    const CrowdMotion m = animate_formation(p, o).motion;
+    CHECK(largest_turn(m) > 25 * pi * 0.99);
+  }
+}
+
 TEST_CASE("a marching band faces the audience while it walks sideways") {
   // The block marches 6 m along +x over 8 s, facing +y (the audience) at every keyframe.
   const Eigen::MatrixXd start = block(3, 4, 1.5);

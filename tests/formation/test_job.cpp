@@ -311,3 +311,41 @@ TEST_CASE("the result lists each keyframe's frame and graph and the crowd's form
     CHECK(crowd.formation_edges[e][1] == without_01[e][1]);
   }
 }
+
+TEST_CASE("a keyframe's facing: degrees for everyone, one per individual, or toward a point; and the facing options") {
+  auto yaw_deg = [](const Eigen::Quaterniond& q) {
+    const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitX();
+    return std::atan2(forward.y(), forward.x()) * 180.0 / std::numbers::pi;
+  };
+  const FormationJob job = read_job<FormationJob>(yaml(
+      "keyframes:\n"
+      "  - {time: 0, positions: [[0, 0], [2, 0], [0, 2], [2, 2.5]], facing: 90}\n"
+      "  - {time: 4, positions: [[10, 0], [12, 0], [10, 2], [12, 2]], facing: [0, 45, -90, 180]}\n"
+      "  - {time: 8, positions: [[20, 0], [22, 0], [20, 2], [22, 2]], facing: {toward: [21, 10]}}\n"
+      "facing: {max_turn_rate: 1.5, smoothing: 0.2, standing_speed: 0.2, running_speed: 3, bank: false}\n"));
+  const auto& k = job.problem.keyframes;
+  REQUIRE(k[0].facings.size() == 4);
+  for (const auto& q : k[0].facings) CHECK(yaw_deg(q) == Approx(90));
+  REQUIRE(k[1].facings.size() == 4);
+  CHECK(yaw_deg(k[1].facings[1]) == Approx(45));
+  CHECK(yaw_deg(k[1].facings[2]) == Approx(-90));
+  CHECK(std::abs(yaw_deg(k[1].facings[3])) == Approx(180));
+  REQUIRE(k[2].facings.size() == 4);
+  // Individual 0 at (20, 0) faces (21, 10): atan2(10, 1).
+  CHECK(yaw_deg(k[2].facings[0]) == Approx(std::atan2(10.0, 1.0) * 180.0 / std::numbers::pi));
+  CHECK(yaw_deg(k[2].facings[3]) == Approx(std::atan2(8.0, -1.0) * 180.0 / std::numbers::pi));
+  CHECK(job.options.facing.max_turn_rate_rad_s == 1.5);
+  CHECK(job.options.facing.smoothing_s == 0.2);
+  CHECK(job.options.facing.rule.standing_speed == 0.2);
+  CHECK(job.options.facing.rule.running_speed == 3);
+  CHECK_FALSE(job.options.facing.bank);
+
+  SECTION("errors name the keyframe's line") {
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml(two_keyframes + "    facing: [0, 90]\n")),
+                      Contains("job.yaml:6") && Contains("keyframes[1].facing") && Contains("2 facings for 4 individuals"));
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "    facing: .nan\n")), ConfigError);
+    CHECK_THROWS_WITH(read_job<FormationJob>(yaml(two_keyframes + "    facing: {towards: [0, 1]}\n")), Contains("toward"));
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "    facing: {toward: [0, 1, 2, 3]}\n")), ConfigError);
+    CHECK_THROWS_AS(read_job<FormationJob>(yaml(two_keyframes + "facing: {max_turn_rate: 0}\n")), ConfigError);
+  }
+}

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <iterator>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -172,6 +173,42 @@ void require_finite_data(const ConfigNode& node, const std::string& what) {
                      "', not a finite number; keyframe data must be finite");
 }
 
+// A keyframe's `facing`: every individual's facing there, as a yaw about +z in degrees counter-clockwise from
+// +x (on the ground; a 3-D formation levels its individuals there): one number for everyone, a list with one per
+// individual (row order), or {toward: point} for each to face a point ([x, y] or [x, y, z]; only its direction
+// on the ground counts; an individual standing on the point keeps +x). Shapes: see Keyframe::facings.
+std::vector<Eigen::Quaterniond> read_facings(const ConfigNode& facing, const Eigen::MatrixXd& positions) {
+  const auto n = static_cast<std::size_t>(positions.rows());
+  auto yaw = [](double degrees) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(degrees * std::numbers::pi / 180.0, Eigen::Vector3d::UnitZ()));
+  };
+  auto finite = [&](const ConfigNode& node, double v) {
+    if (!std::isfinite(v)) node.fail("facing must be finite degrees");
+    return v;
+  };
+  if (facing.is_scalar()) return std::vector<Eigen::Quaterniond>(n, yaw(finite(facing, facing.as_double())));
+  if (facing.is_sequence()) {
+    const std::vector<double> degrees = facing.as_doubles();
+    if (degrees.size() != n)
+      facing.fail(std::to_string(degrees.size()) + " facings for " + std::to_string(n) +
+                  " individuals (give one number for everyone, or one per individual)");
+    std::vector<Eigen::Quaterniond> out;
+    for (double d : degrees) out.push_back(yaw(finite(facing, d)));
+    return out;
+  }
+  if (!facing.is_map()) facing.fail("give facing as degrees, a list of degrees, or {toward: [x, y]}");
+  const ConfigNode toward = facing.at("toward");
+  const std::vector<double> point = toward.as_doubles({2, 3});
+  for (double v : point) finite(toward, v);
+  std::vector<Eigen::Quaterniond> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const double dx = point[0] - positions(row, 0), dy = point[1] - positions(row, 1);
+    out.push_back(std::hypot(dx, dy) > 0 ? yaw(std::atan2(dy, dx) * 180.0 / std::numbers::pi) : yaw(0));
+  }
+  return out;
+}
+
 // Keyframe positions: `positions` rows or generated `shapes`.
 Eigen::MatrixXd read_positions(const ConfigNode& key) {
   const bool has_positions = key.has("positions"), has_shapes = key.has("shapes");
@@ -281,6 +318,7 @@ void read_job(const ConfigNode& job, FormationJob& parsed) {
       keyframe.positions = read_positions(key);
       if (auto e = key.find("edits")) keyframe.edits = read_edits(*e, parsed.problem.hierarchy);
       if (auto sharp = key.find("sharp")) keyframe.sharp = sharp->as_bool();  // a sharp corner (formation.h)
+      if (auto facing = key.find("facing")) keyframe.facings = read_facings(*facing, keyframe.positions);
       if (k > 0) {
         const formation::Keyframe& first = parsed.problem.keyframes.front();
         const formation::Keyframe& previous = parsed.problem.keyframes.back();

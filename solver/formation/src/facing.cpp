@@ -75,7 +75,13 @@ void fill_facings(CrowdMotion& m, const Timeline& timeline, const std::vector<st
     for (std::size_t f = 0; f < T; ++f) {
       const Chord c = window.at(f, n);
       const double speed = c.velocity.norm();
-      if (speed >= o.rule.standing_speed) facing = travel_orientation(c, dimension, o);
+      if (speed >= o.rule.standing_speed) {
+        // Toward the travel orientation, by at most max_turn_rate over the frame interval.
+        const Eigen::Quaterniond target = travel_orientation(c, dimension, o);
+        const double turn = facing.angularDistance(target);
+        const double allowed = f > 0 ? o.max_turn_rate_rad_s * (m.times[f] - m.times[f - 1]) : turn;
+        facing = turn <= allowed ? target : facing.slerp(allowed / turn, target).normalized();
+      }
       m.action(f, n) = speed < o.rule.standing_speed ? action_stand : speed >= o.rule.running_speed ? action_run : action_walk;
       const auto s = static_cast<std::size_t>(timeline.segment[f]);
       const double u = timeline.local[f];

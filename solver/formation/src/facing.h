@@ -8,6 +8,8 @@
 //                  core's standing rule. 2-D formations: a yaw about +z. 3-D formations: yaw and pitch along the
 //                  chord (core's facing_along), and with FacingOptions::bank a roll into turns as a coordinated
 //                  turn flies it: tan(bank) = lateral acceleration / g, the acceleration from the same window.
+//                  It turns toward that orientation at most FacingOptions::max_turn_rate_rad_s (along the shorter
+//                  arc): an individual whose path reverses turns about over a second instead of in one frame.
 //   given facings  a keyframe's facings (Keyframe::facings) hold exactly at its frame. Between two keyframes that
 //                  both give them the facing turns along the shorter arc (slerp; in 2-D the shorter yaw) linearly in
 //                  time; between one that gives them and one that does not it turns from the given facing to the

@@ -24,6 +24,23 @@ void describe(OptionBinder& b, Options& o) {
           o.auto_cluster_size);
   b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .help = "every individual's radius in the output"},
           o.radius_m);
+  b.section("facing", [&](OptionBinder& f) {
+    FacingOptions& k = o.facing;
+    f.field({.key = "smoothing", .unit = "s", .range = Range::non_negative(),
+             .help = "the direction of travel is the path's chord over this window"},
+            k.smoothing_s);
+    f.field({.key = "standing_speed", .unit = "m/s", .range = Range::positive(),
+             .help = "slower: standing (the facing is kept)"},
+            k.rule.standing_speed);
+    f.field({.key = "running_speed", .unit = "m/s", .range = Range::positive(), .help = "from this speed: running"},
+            k.rule.running_speed);
+    f.field({.key = "max_turn_rate", .unit = "rad/s", .range = Range::positive(),
+             .help = "the travel facing turns at most this fast"},
+            k.max_turn_rate_rad_s);
+    f.field({.key = "bank", .help = "3-D: roll into turns as a coordinated turn"}, k.bank);
+    f.field({.key = "gravity", .unit = "m/s²", .range = Range::positive(), .help = "g of the coordinated turn"},
+            k.gravity_mps2);
+  });
   b.section("collision", [&](OptionBinder& c) {
     CollisionOptions& k = o.collision;
     c.field({.key = "enabled", .help = "social forces then smoothing (§4.3)"}, k.enabled);

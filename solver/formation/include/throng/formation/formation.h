@@ -80,6 +80,7 @@
 
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -173,6 +174,9 @@ struct FacingOptions {
                              ///< rule.running_speed (core's defaults: 0.3 and 2 m/s)
   bool bank = true;          ///< 3-D formations (flying: the airshow) roll into turns as a coordinated turn
   double gravity_mps2 = 9.81;  ///< g of the coordinated turn: tan(bank) = lateral acceleration / g
+  double max_turn_rate_rad_s = std::numbers::pi;  ///< > 0: the travel facing turns at most this fast (half a
+                             ///< turn per second: a person turns about in a second), so an individual that
+                             ///< reverses does not flip round in one frame; keyframe facings still hold exactly
 };
 
 struct Options {
