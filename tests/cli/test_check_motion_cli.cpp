@@ -187,3 +187,30 @@ TEST_CASE("check-motion: collide's repair of every recorded crowd in data/real p
   }
   CHECK(datasets >= 4);  // eth, hotel, univ_students03, zara01
 }
+
+TEST_CASE("check-motion: every formation config passes at its guard's limits: 1.25 × the keyframes' speed, 3 and 8 m/s²") {
+  // The formation job's guard (solver/formation plausibility.h) holds the crowd to guard.max_speed_ratio × the
+  // stated speed (the keyframes' own straight-line speed unless the job states max_speed), as its report says;
+  // accelerations to issue 14's limits, or to the job's guard.max_acceleration where it states one (the airshow's
+  // planes), and facings turn at most 2π rad/s (the checker's default).
+  for (const char* config : {"formation-marching-band.yaml", "formation-offside-trap.yaml", "formation-hierarchy-1260.yaml",
+                             "formation-airshow.yaml"}) {
+    INFO(config);
+    const fs::path dir = test::scratch_dir(std::string("cli_check_motion_") + config);
+    std::string out;
+    const int code = test::run_command(test::throng_program().string() + " --quiet formation " +
+                                           (test::source_dir() / "configs" / config).string() + " -o " + (dir / "out.h5").string(),
+                                       &out);
+    INFO(out);
+    REQUIRE(code == 0);
+    const YAML::Node report = YAML::Load(out);
+    REQUIRE(report["guard_speed_limit_m_s"]);
+    const YAML::Node job = YAML::LoadFile((test::source_dir() / "configs" / config).string());
+    std::string accelerations = acceleration_limits;
+    if (job["guard"] && job["guard"]["max_acceleration"]) {
+      const std::string a = number(job["guard"]["max_acceleration"].as<double>());
+      accelerations = " --max-acceleration " + a + " --acceleration-p99 " + a + " --max-turning-rate 1e9 --turning-rate-p99 1e9";
+    }
+    require_passes(dir / "out.h5", " --max-speed " + number(report["guard_speed_limit_m_s"].as<double>() * (1 + 1e-9)) + accelerations);
+  }
+}

@@ -50,6 +50,9 @@ void check_options(const Options& o) {
               " must be a finite number above standing_speed " + std::to_string(f.rule.standing_speed) + " (m/s)");
   require(std::isfinite(f.gravity_mps2) && f.gravity_mps2 > 0,
           "formation.facing.gravity: " + std::to_string(f.gravity_mps2) + " must be a finite number > 0 (m/s²)");
+  require(std::isfinite(o.max_speed_mps) && o.max_speed_mps >= 0,
+          "formation.max_speed: " + std::to_string(o.max_speed_mps) + " must be a finite number ≥ 0 (m/s; 0: the keyframes' own)");
+  timewarp::validate(o.guard, "formation.guard");
   require(std::isfinite(f.max_turn_rate_rad_s) && f.max_turn_rate_rad_s > 0,
           "formation.facing.max_turn_rate: " + std::to_string(f.max_turn_rate_rad_s) + " must be a finite number > 0 (rad/s)");
   const CollisionOptions& c = o.collision;

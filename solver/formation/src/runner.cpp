@@ -1,4 +1,5 @@
 #include <throng/core/format.h>
+#include <throng/formation/plausibility.h>
 #include <throng/formation/runner.h>
 #include <throng/formation/schema.h>
 
@@ -36,6 +37,7 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
   if (!inputs.empty()) out.crowd.scene = inputs.front()->scene;
   out.problem = job.problem;
   out.result = animate_formation(job.problem, job.options, progress);
+  guard_formation(out.result, job.options);  // plausible speed and acceleration (plausibility.h)
   out.crowd.motion = std::move(out.result.motion);
   out.result.motion = CrowdMotion{};
   out.crowd.formation_edges = kept_edges(out.result);
@@ -59,6 +61,17 @@ void describe(ReportWriter& w, const Run& run) {
   w.counts("keyframe_frames", r.keyframe_frames);
   w.count("groups", group_count(r.hierarchy));
   w.count("formation_edges", run.crowd.formation_edges.size());
+  if (r.guard.warped || r.guard.windows > 0) {
+    // The plausibility guard (formation.h step 14): how much it slowed the formation and smoothed it.
+    w.flag("guard_warped", r.guard.warped);
+    w.number("guard_largest_stretch", r.guard.largest_stretch);
+    w.number("guard_speed_limit_m_s", r.guard.speed_limit);
+    w.number("guard_max_speed_before_m_s", r.guard.max_speed_before);
+    w.number("guard_max_speed_m_s", r.guard.max_speed_after);
+    w.count("guard_kinks_before", r.guard.kinks_before);
+    w.count("guard_kinks_after", r.guard.kinks_after);
+    w.number("guard_max_acceleration_m_s2", r.guard.max_acceleration_after);
+  }
   if (!r.collision.ran) return;
   w.flag("collision_satisfied", r.collision.satisfied);
   w.number("closest_m", r.collision.closest_m);

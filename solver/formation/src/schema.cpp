@@ -1,4 +1,5 @@
 #include <throng/formation/schema.h>
+#include <throng/timewarp/schema.h>
 
 namespace throng::formation {
 
@@ -24,6 +25,10 @@ void describe(OptionBinder& b, Options& o) {
           o.auto_cluster_size);
   b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .help = "every individual's radius in the output"},
           o.radius_m);
+  b.field({.key = "max_speed", .unit = "m/s", .range = Range::non_negative(),
+           .help = "the stated speed the guard holds to (× guard.max_speed_ratio); 0: the keyframes' own"},
+          o.max_speed_mps);
+  b.section("guard", [&](OptionBinder& g) { timewarp::describe(g, o.guard); });
   b.section("facing", [&](OptionBinder& f) {
     FacingOptions& k = o.facing;
     f.field({.key = "smoothing", .unit = "s", .range = Range::non_negative(),

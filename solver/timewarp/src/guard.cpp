@@ -33,8 +33,10 @@ double acceleration_at(const CrowdMotion& c, std::size_t a, std::size_t f) {
 double largest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
 
 // Replaces agent a's positions at frames [s, e] by the bridge of least Σ|Δ²x|² over the window and its two fixed
-// frames each side inside the run [rs, re); returns the largest shift.
-double bridge(CrowdMotion& c, std::size_t a, std::size_t s, std::size_t e, std::size_t rs, std::size_t re) {
+// frames each side inside the run [rs, re), keeping the pinned frames' positions; returns the largest shift.
+double bridge(CrowdMotion& c, std::size_t a, std::size_t s, std::size_t e, std::size_t rs, std::size_t re,
+              const std::vector<char>& pinned) {
+  auto fixed_frame = [&](std::size_t f) { return f < s || f > e || pinned[f] != 0; };
   const auto n = static_cast<Eigen::Index>(e - s + 1);
   const std::size_t lo = s > rs + 2 ? s - 2 : rs, hi = std::min(re - 1, e + 2);  // frames in the energy
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
@@ -44,19 +46,19 @@ double bridge(CrowdMotion& c, std::size_t a, std::size_t s, std::size_t e, std::
     const double coefficient[3] = {1.0, -2.0, 1.0};
     Vec fixed = Vec::Zero();
     for (int i = 0; i < 3; ++i) {
-      if (frames[i] < s || frames[i] > e) fixed += coefficient[i] * Vec(c.position(frames[i], a));
+      if (fixed_frame(frames[i])) fixed += coefficient[i] * Vec(c.position(frames[i], a));
     }
     for (int i = 0; i < 3; ++i) {
-      if (frames[i] < s || frames[i] > e) continue;
+      if (fixed_frame(frames[i])) continue;
       const auto u = static_cast<Eigen::Index>(frames[i] - s);
       rhs.row(u) -= coefficient[i] * fixed.transpose();
       for (int j = 0; j < 3; ++j) {
-        if (frames[j] >= s && frames[j] <= e) M(u, static_cast<Eigen::Index>(frames[j] - s)) += coefficient[i] * coefficient[j];
+        if (!fixed_frame(frames[j])) M(u, static_cast<Eigen::Index>(frames[j] - s)) += coefficient[i] * coefficient[j];
       }
     }
   }
   // A faint tie to the current positions: fixes what the second differences leave free (a window that is the
-  // whole run may move along a straight line).
+  // whole run may move along a straight line). A pinned frame's row holds the tie alone: it stays where it is.
   constexpr double tie = 1e-6;
   for (Eigen::Index u = 0; u < n; ++u) {
     M(u, u) += tie;
@@ -78,7 +80,8 @@ struct Smoothed {
 };
 
 // Step 2 of guard.h for agent a, with the per-frame limits `limit` ([T][N]).
-Smoothed smooth_agent(CrowdMotion& c, std::size_t a, const std::vector<double>& limit, const GuardOptions& o) {
+Smoothed smooth_agent(CrowdMotion& c, std::size_t a, const std::vector<double>& limit, const std::vector<char>& pinned,
+                      const GuardOptions& o) {
   Smoothed out;
   const std::size_t T = c.frame_count(), N = c.agent_count();
   for (std::size_t rs = 0; rs < T;) {
@@ -104,7 +107,7 @@ Smoothed smooth_agent(CrowdMotion& c, std::size_t a, const std::vector<double>& 
       // Windows [f − w, f + w] within the run, merged where they meet.
       std::size_t s = found.front() > rs + w ? found.front() - w : rs, e = std::min(re - 1, found.front() + w);
       auto flush = [&] {
-        out.shift = std::max(out.shift, bridge(c, a, s, e, rs, re));
+        out.shift = std::max(out.shift, bridge(c, a, s, e, rs, re, pinned));
         ++out.windows;
       };
       for (std::size_t i = 1; i < found.size(); ++i) {
@@ -235,10 +238,20 @@ GuardResult guard(const CrowdMotion& output, const Source& source, const GuardOp
     for (std::size_t i = 0; i + 1 < T; ++i) w.inverse_intervals[i] = 1.0 / (w.warped_times[i + 1] - w.warped_times[i]);
     report.duration_after = r.crowd.times.back() - r.crowd.times.front();
   }
-  // 2. Kinks, agent by agent (each writes only its own positions).
+  // 2. Kinks, agent by agent (each writes only its own positions), the pinned times kept at the frames nearest
+  // their warped times.
+  const std::vector<double>& times = r.crowd.times;
+  std::vector<char> pinned(times.size(), 0);
+  for (double t : source.pinned_times) {
+    const double warped = report.warped ? r.warp.map(t) : t;
+    const auto after = std::lower_bound(times.begin(), times.end(), warped);
+    auto f = static_cast<std::size_t>(std::min<std::ptrdiff_t>(after - times.begin(), static_cast<std::ptrdiff_t>(times.size()) - 1));
+    if (f > 0 && std::abs(times[f - 1] - warped) <= std::abs(times[f] - warped)) --f;
+    pinned[f] = 1;
+  }
   std::vector<Smoothed> per_agent(N);
   parallel_for(N, 16, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t a = begin; a < end; ++a) per_agent[a] = smooth_agent(r.crowd, a, limit, o);
+    for (std::size_t a = begin; a < end; ++a) per_agent[a] = smooth_agent(r.crowd, a, limit, pinned, o);
   });
   for (const Smoothed& s : per_agent) {
     report.kinks_before += s.kinks_before;

@@ -74,6 +74,7 @@
 
 #include <throng/core/crowd_motion.h>
 #include <throng/core/progress.h>
+#include <throng/timewarp/guard.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -199,6 +200,12 @@ struct Options {
   double radius_m = 0.25;            ///< radius written for every individual
   CollisionOptions collision;
   FacingOptions facing;
+  /// Beyond the paper (issue 14), applied by the formation job after animate_formation (plausibility.h): the
+  /// guard slows the formation where an individual is faster than guard.max_speed_ratio × the stated speed and
+  /// smooths accelerations beyond guard.max_acceleration. guard.enabled = false: the paper's timing exactly.
+  timewarp::GuardOptions guard;
+  double max_speed_mps = 0;  ///< the stated speed (m/s, ≥ 0); 0: the keyframes' own (fastest straight-line speed
+                             ///< an individual needs between two consecutive keyframes)
 };
 
 /// A pair of individuals (indices into the keyframes' rows, i.e. output agents).
@@ -277,6 +284,7 @@ struct Result {
   /// edges between two direct members of one group (edges to a subgroup's barycentre are left out).
   std::vector<std::vector<Pair>> keyframe_edges;
   CollisionReport collision;
+  timewarp::GuardReport guard;  ///< what the plausibility guard did (plausibility.h; untouched by animate_formation)
 };
 
 /// Interpolates the keyframes of `problem`. Throws ConfigError for options out of range, InputError for bad data

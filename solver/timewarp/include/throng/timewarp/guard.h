@@ -44,9 +44,12 @@ void validate(const GuardOptions& options, const std::string& what = "guard");
 ///   max_speed     m/s: the source's fastest speed (> 0 for the speed limit to act)
 ///   acceleration  empty, or #frames × #agents (the output's, [T][N]) |a| of the source at that frame (m/s²; 0
 ///                 or NaN where unknown)
+///   pinned_times  seconds, times of `output` whose positions the smoothing keeps (a formation's keyframes): the
+///                 frame nearest each one's warped time is held where the warp put it
 struct Source {
   double max_speed = 0;
   std::vector<double> acceleration;
+  std::vector<double> pinned_times;
 };
 
 /// The source as `reference` moves at `output`'s frames and agents: agents matched by id, frames by time within
