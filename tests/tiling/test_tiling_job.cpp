@@ -4,7 +4,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/io/crowd_file.h>
-#include <throng/io/real_dataset.h>
+#include <throng/io/import_crowd.h>
 #include <throng/io/tiling_job.h>
 #include <throng/tiling/construct.h>
 
@@ -191,7 +191,7 @@ TEST_CASE("patches from two synthetic walkers: a pair episode tied at its closes
 
 TEST_CASE("patches from the real zara01 data tile a box perfectly") {
   const auto dir = test::real_data_dir();
-  const CrowdFile data = import_real_dataset(dir / "zara01", RealDatasetOptions{});
+  const CrowdFile data = import_crowd(dir / "zara01").crowd;
   RealPatchOptions o;
   o.max_pair_patches = 6;
   o.max_single_patches = 6;
