@@ -92,7 +92,7 @@ TEST_CASE("merge keeps one copy of identical obstacles") {
   CHECK(merge_scenes(scene_with_circle, other).obstacles.size() == 6);
 }
 
-TEST_CASE("the halves of a crowd cut in time, merged joined by id, are the crowd again") {
+TEST_CASE("the halves of a crowd cut in time and merged joined by id are the crowd again") {
   const CrowdMotion c = comings_and_goings();
   const Scene walls = four_walls();
   const TimeSplit s = split_at_frame(c, 15);

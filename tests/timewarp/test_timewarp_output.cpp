@@ -39,7 +39,7 @@ std::size_t present_frames(const CrowdMotion& c, std::size_t agent) {
 
 }  // namespace
 
-TEST_CASE("timewarp reports the duration of the frames it wrote, not the warp's span") {
+TEST_CASE("timewarp reports the duration of the frames it wrote and not the warp's span") {
   // 1052 frames at 2.5 Hz end at 420.4 s; the warp stretches them to 420.52 s, beyond the last 2.5 Hz frame
   // (420.4 s) by less than half an interval: the frames written end at 420.4 s and the report says so.
   const CrowdMotion original = walkers(3, 1052);
