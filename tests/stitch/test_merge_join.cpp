@@ -200,6 +200,18 @@ TEST_CASE("facing and actions pass through split and merge") {
       }
     }
   }
+  SECTION("on other frame times they are interpolated: slerped facing, the earlier sample's action") {
+    CrowdMotion later = test::marching_grid(1, 2, 30);
+    for (double& t : later.times) t += 0.05;  // halfway between c's frames
+    const Merged m = merge(c, {}, later, {}, MergeOptions{});
+    REQUIRE(m.report.interpolated_frames_first > 0);
+    m.crowd.validate();
+    // The overlap starts at 0.05 s, halfway between c's frames 0 and 1: agent 0's yaw halfway, frame 0's action.
+    REQUIRE(m.crowd.times[0] == Approx(0.05));
+    const Eigen::Quaterniond q = m.crowd.orientation(0, 0);
+    CHECK(2.0 * std::atan2(q.z(), q.w()) == Approx(0.025).epsilon(1e-9));
+    CHECK(m.crowd.action(0, 0) == c.action(0, 0));
+  }
   SECTION("a crowd without them gets the defaults from its path, and the action tables become one") {
     CrowdMotion plain = test::marching_grid(1, 2, 30);
     plain.ids = {100, 101};
