@@ -6,17 +6,23 @@
 #include "../method_command.h"
 #include "factories.h"
 
-#include <throng/io/real_dataset.h>
+#include <throng/io/import_crowd.h>
 #include <throng/io/tiling_job.h>
 
 namespace throng::cli {
 namespace {
 
-/// The recorded crowd of library.real is imported first; what needs the library (built then) names the job.
+/// The recorded crowd of library.real is imported first, by import_crowd (whatever `throng import` reads, with
+/// library.real's fps, columns, units and credit); what needs the library (built then) names the job.
 tiling::Run tile(const Crowds&, TilingJob& job, MethodRun& r) {
   std::optional<CrowdFile> recorded;
   if (job.library.real) {
-    recorded = import_real_dataset(job.real_dataset, RealDatasetOptions{});
+    try {
+      recorded = import_crowd(job.real_dataset, job.real_import).crowd;
+    } catch (const ConfigError& e) {  // a rate or column map the data needs: named by the job's keys
+      throw ConfigError(r.where + ": library.real: " + e.what() +
+                        " (in a tiling job: library.real.fps, .columns, .units, or the flags of the same names)");
+    }
     r.files_read.push_back(job.real_dataset);
     r.credits = recorded->provenance.credits;
   }

@@ -3,15 +3,38 @@
 #include <optional>
 
 namespace throng {
+namespace {
 
-void describe(OptionBinder& b, ImportOptions& o) {
+// The fields both schemas share (import's and a tiling library's recorded crowd).
+void fps_field(OptionBinder& b, ImportOptions& o) {
   std::optional<double> fps;  // absent: the rate the data states
   if (o.fps > 0) fps = o.fps;
   b.field({.key = "fps", .unit = "Hz", .range = Range::positive(), .flag = "--fps",
            .help = "frames per second of the frame numbers, where the data states no rate"},
           fps);
   o.fps = fps.value_or(0.0);
+}
+void credit_field(OptionBinder& b, ImportOptions& o) {
   b.field({.key = "credit", .flag = "--credit", .help = "credit stored in the provenance, after the data's own"}, o.credit);
+}
+void table_fields(OptionBinder& b, ImportOptions& o) {
+  b.field({.key = "columns", .flag = "--columns", .help = "CSV column map time=t,id=pid,x=X,y=Y[,z=][,species=][,radius=]"},
+          o.columns);
+  b.choice({.key = "units", .flag = "--units", .help = "unit of the file's positions (default: the format's own)"}, o.units,
+           {"", "m", "cm", "mm"});
+}
+
+}  // namespace
+
+void describe_reading(OptionBinder& b, ImportOptions& o) {
+  fps_field(b, o);
+  credit_field(b, o);
+  table_fields(b, o);
+}
+
+void describe(OptionBinder& b, ImportOptions& o) {
+  fps_field(b, o);
+  credit_field(b, o);
   b.field({.key = "species_from", .flag = "--species-from",
            .help = "none, groups.txt, a groups file, or a CSV column (default: the format's own)"},
           o.species_from);
@@ -19,10 +42,7 @@ void describe(OptionBinder& b, ImportOptions& o) {
   b.field({.key = "obstacles", .flag = "--obstacles", .help = "obstacles from a map.xml or a crowd file instead of the data's"},
           obstacles);
   o.obstacles = obstacles;
-  b.field({.key = "columns", .flag = "--columns", .help = "CSV column map time=t,id=pid,x=X,y=Y[,z=][,species=][,radius=]"},
-          o.columns);
-  b.choice({.key = "units", .flag = "--units", .help = "unit of the file's positions (default: the format's own)"}, o.units,
-           {"", "m", "cm", "mm"});
+  table_fields(b, o);
   b.field({.key = "radius", .unit = "m", .range = Range::non_negative(), .flag = "--radius", .help = "every agent's radius"},
           o.radius);
   b.field({.key = "wall_thickness", .unit = "m", .range = Range::non_negative(), .flag = "--wall-thickness",

@@ -11,6 +11,7 @@
 #include <throng/edit/runner.h>
 #include <throng/formation/runner.h>
 #include <throng/io/data_options.h>
+#include <throng/io/tiling_job.h>
 #include <throng/sketch/runner.h>
 #include <throng/stitch/jobs.h>
 #include <throng/stitch/schema.h>
@@ -75,7 +76,7 @@ std::vector<CommandCase> commands() {
        region + "library: {builtin: [locomotion], real: {dataset: nowhere}}\n",
        {{"output.repeat", "region: {min: [0, 0], max: [12, 12], time: [0, 12], periodic: [true, true, true]}\n"
                           "library: {builtin: [locomotion]}\n"}},
-       fields_of<tiling::Job>(tiling::describe)},
+       fields_of<TilingJob>(describe)},
       {"import", "nowhere -o out.h5", J::none, "", {}, fields_of<ImportOptions>(describe)},
       {"plot", "nowhere.h5 -o out.svg", J::none, "", {}, fields_of<PlotJob>(describe)},
       {"check-tiling", "nowhere.h5", J::none, "", {}, fields_of<CheckTilingJob>(describe)},

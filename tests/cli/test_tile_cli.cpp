@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <sstream>
 
 #include "cli.h"
 #include "test_paths.h"
@@ -247,4 +248,85 @@ TEST_CASE("throng plot of a tiling colours the patches by type and marks the con
   const std::string plain = read_text(dir / "plain.svg");
   CHECK(plain.find("connection (") == std::string::npos);
   CHECK(occurrences(plain, "<polyline stroke=\"") >= read_crowd_file(tiled).motion.agent_count());
+}
+
+namespace {
+
+// zara01's obsmat.txt (frame id x z y ...; frames at 25 per second) rewritten as another layout: `row` gets the
+// frame, the id, x and y (metres) and returns the line.
+template <class Row>
+std::filesystem::path rewrite_zara01(const std::filesystem::path& path, const std::string& header, Row row) {
+  std::ifstream in(test::real_data_dir() / "zara01" / "obsmat.txt");
+  std::ofstream out(path);
+  out << header;
+  double frame = 0, id = 0, x = 0, z = 0, y = 0, vx = 0, vz = 0, vy = 0;
+  while (in >> frame >> id >> x >> z >> y >> vx >> vz >> vy) out << row(frame, id, x, y) << "\n";
+  return path;
+}
+
+std::string real_job(const std::string& dataset, const std::string& more = "") {
+  return "region: {min: [0, 0], max: [12, 12], time: [0, 20]}\n"
+         "library:\n  builtin: [locomotion]\n  real:\n    dataset: " + dataset + "\n"
+         "    max_pair_patches: 4\n    max_single_patches: 4\n" + more +
+         "characters: 10\nchains: 2\nannealing: {max_failures: 2000}\n";
+}
+
+}  // namespace
+
+TEST_CASE("a tiling library reads its recorded crowd in any format throng import reads") {
+  const auto dir = test::scratch_dir("cli_tile_real_formats");
+  std::string text;
+  auto tile_ok = [&](const std::string& job_text, const std::string& flags, const std::string& name) {
+    write_file(dir / (name + ".yaml"), job_text);
+    const auto out = dir / (name + ".h5");
+    INFO(name);
+    REQUIRE(run("--quiet --json tile " + (dir / (name + ".yaml")).string() + " " + flags + " -o " + out.string(), &text) == 0);
+    CHECK_THAT(text, Contains("\"dangling\": 0"));
+    std::string checked;
+    CHECK(run("--json check-tiling " + out.string(), &checked) == 0);
+    return read_crowd_file(out);
+  };
+  SECTION("an ETH/UCY folder, and the crowd file throng import made of it") {
+    const CrowdFile from_folder = tile_ok(real_job(test::real_data_dir().string() + "/zara01/"), "", "folder");
+    CHECK_FALSE(from_folder.provenance.credits.empty());
+    REQUIRE(run("--quiet import " + (test::real_data_dir() / "zara01").string() + " -o " + (dir / "zara.h5").string()) == 0);
+    const CrowdFile from_crowd = tile_ok(real_job("zara.h5"), "", "crowd");  // relative to the job's folder
+    CHECK(from_crowd.provenance.credits == from_folder.provenance.credits);
+    CHECK_THAT(from_crowd.provenance.options, Contains((dir / "zara.h5").string()));
+  }
+  SECTION("a CSV table with its own column names in centimetres: library.real.columns and units") {
+    rewrite_zara01(dir / "zara.csv", "t_s,person,X_cm,Y_cm\n", [](double f, double id, double x, double y) {
+      std::ostringstream row;
+      row.precision(10);
+      row << f / 25 << "," << id << "," << 100 * x << "," << 100 * y;
+      return row.str();
+    });
+    // Without the column map the importer cannot find x and y: exit 3 (bad input data) saying what to give.
+    write_file(dir / "bare.yaml", real_job("zara.csv"));
+    CHECK(run("tile " + (dir / "bare.yaml").string() + " -o " + (dir / "bare.h5").string(), &text) == 3);
+    CHECK_THAT(text, Contains("zara.csv") && Contains("--columns"));
+    CHECK_FALSE(std::filesystem::exists(dir / "bare.h5"));
+    const CrowdFile tiled = tile_ok(real_job("zara.csv", "    columns: \"time=t_s,id=person,x=X_cm,y=Y_cm\"\n"
+                                                         "    units: cm\n    credit: \"UCY zara01, as a CSV\"\n"),
+                                    "", "csv");
+    CHECK(std::find(tiled.provenance.credits.begin(), tiled.provenance.credits.end(), "UCY zara01, as a CSV") !=
+          tiled.provenance.credits.end());
+  }
+  SECTION("the 4-column frame id x y layout needs a frame rate: library.real.fps or --fps") {
+    rewrite_zara01(dir / "zara.txt", "", [](double f, double id, double x, double y) {
+      std::ostringstream row;
+      row.precision(10);
+      row << f << " " << id << " " << x << " " << y;
+      return row.str();
+    });
+    write_file(dir / "rate.yaml", real_job("zara.txt"));
+    CHECK(run("tile " + (dir / "rate.yaml").string() + " -o " + (dir / "rate.h5").string(), &text) == 2);
+    CHECK_THAT(text, Contains("per second") && Contains("library.real.fps"));
+    CHECK_FALSE(std::filesystem::exists(dir / "rate.h5"));
+    (void)tile_ok(real_job("zara.txt"), "--fps 25", "rate_flag");
+    (void)tile_ok(real_job("zara.txt", "    fps: 25\n"), "", "rate_key");
+    // The flag's value is checked as the command line is read.
+    CHECK(run("tile " + (dir / "rate.yaml").string() + " --fps -3 -o " + (dir / "rate.h5").string(), &text) == 2);
+    CHECK_THAT(text, Contains("--fps") && Contains("library.real.fps"));
+  }
 }

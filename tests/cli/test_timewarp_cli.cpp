@@ -96,3 +96,51 @@ TEST_CASE("timewarp errors: a reference without the crowd's agents, bad options,
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   CHECK(files == 2);
 }
+
+namespace {
+
+// 3 walkers east at 1.4 m/s, `frames` frames at 2.5 Hz (the ETH/UCY rate), and the same paths with every step
+// scaled by k: the warp against the first scales every interval by k.
+std::pair<CrowdFile, CrowdFile> walkers_and_scaled(std::size_t frames, double k) {
+  CrowdFile walk, scaled;
+  walk.motion = CrowdMotion::with_shape(frames, 3);
+  for (std::size_t f = 0; f < frames; ++f) {
+    walk.motion.times[f] = 0.4 * static_cast<double>(f);
+    for (std::size_t a = 0; a < 3; ++a) walk.motion.position(f, a) << 1.4 * walk.motion.times[f], 0.5 * static_cast<double>(a), 0.0;
+  }
+  scaled = walk;
+  for (double& p : scaled.motion.positions) p *= k;
+  return {walk, scaled};
+}
+
+}  // namespace
+
+TEST_CASE("timewarp reports the duration of the frames it wrote and keeps every last sample (issue 17's cases)") {
+  const auto dir = test::scratch_dir("cli_timewarp_report");
+  std::string out;
+  SECTION("frames ending at 420.4 s warped to end at 420.52 s: duration_s 420.4") {
+    const auto [walk, scaled] = walkers_and_scaled(1052, 420.52 / 420.4);
+    write_crowd_file(dir / "walk.h5", walk);
+    write_crowd_file(dir / "scaled.h5", scaled);
+    REQUIRE(run("--quiet --json timewarp " + s(dir / "scaled.h5") + " --reference " + s(dir / "walk.h5") + " -o " + s(dir / "out.h5"), &out) == 0);
+    const auto report = nlohmann::json::parse(out);
+    CHECK(report["duration_s"].get<double>() == Approx(420.4).epsilon(1e-12));
+    CHECK(report["warped_duration_s"].get<double>() == Approx(420.52).epsilon(1e-9));
+    const CrowdFile warped = read_crowd_file(dir / "out.h5");
+    CHECK(warped.motion.times.back() - warped.motion.times.front() == Approx(report["duration_s"].get<double>()).epsilon(1e-15));
+  }
+  SECTION("a warp of 27 ms keeps every agent's last sample") {
+    const auto [walk, scaled] = walkers_and_scaled(26, (10.0 - 0.027) / 10.0);
+    write_crowd_file(dir / "walk.h5", walk);
+    write_crowd_file(dir / "scaled.h5", scaled);
+    REQUIRE(run("--quiet --json timewarp " + s(dir / "scaled.h5") + " --reference " + s(dir / "walk.h5") + " -o " + s(dir / "out.h5"), &out) == 0);
+    const auto report = nlohmann::json::parse(out);
+    CHECK(report["frames"] == 26);
+    CHECK(report["warped_duration_s"].get<double>() == Approx(9.973).epsilon(1e-12));
+    const CrowdFile warped = read_crowd_file(dir / "out.h5");
+    for (std::size_t a = 0; a < 3; ++a) {
+      CHECK(warped.motion.present(25, a));
+      CHECK((warped.motion.position(25, a) - scaled.motion.position(25, a)).norm() < 1e-9);
+    }
+  }
+}

@@ -4,7 +4,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/io/crowd_file.h>
-#include <throng/io/real_dataset.h>
+#include <throng/io/import_crowd.h>
 #include <throng/io/tiling_job.h>
 #include <throng/tiling/construct.h>
 
@@ -66,6 +66,31 @@ TEST_CASE("a tiling job reads every part and its effective form reads back the s
   const std::string once = to_yaml_text(effective);
   const std::string twice = to_yaml_text(effective_job(parse(once)));
   CHECK(once == twice);
+}
+
+TEST_CASE("library.real takes import's reading options, and its effective form keeps them") {
+  const std::string text = "region: {min: [0, 0], max: [8, 8], time: [0, 8]}\n"
+                           "library:\n  real:\n    dataset: tracks.csv\n    fps: 25\n"
+                           "    columns: \"frame=f,id=p,x=X,y=Y\"\n    units: cm\n    credit: Our lab\n    near: 2\n";
+  const TilingJob job = parse(text);
+  CHECK(job.real_import.fps == 25);
+  CHECK(job.real_import.columns == "frame=f,id=p,x=X,y=Y");
+  CHECK(job.real_import.units == "cm");
+  CHECK(job.real_import.credit == "Our lab");
+  CHECK(job.library.real_options.near_m == 2);
+  CHECK(std::filesystem::path(job.real_dataset).is_absolute());
+  const TilingJob again = parse(to_yaml_text(effective_job(job)));
+  CHECK(again.real_import.fps == 25);
+  CHECK(again.real_import.columns == job.real_import.columns);
+  CHECK(again.real_import.units == "cm");
+  CHECK(again.real_import.credit == "Our lab");
+  CHECK(again.real_dataset == job.real_dataset);
+  // Absent: the format's own (no rate, no map, no unit); a unit import does not know is refused with its line.
+  const TilingJob plain = parse("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {real: {dataset: x}}\n");
+  CHECK(plain.real_import.fps == 0);
+  CHECK(plain.real_import.units.empty());
+  CHECK_THROWS_WITH(parse("region: {min: [0, 0], max: [8, 8], time: [0, 8]}\nlibrary: {real: {dataset: x, units: ft}}\n"),
+                    Catch::Contains("job.yaml:2") && Catch::Contains("ft"));
 }
 
 TEST_CASE("tiling job errors are configuration errors naming the place") {
@@ -191,7 +216,7 @@ TEST_CASE("patches from two synthetic walkers: a pair episode tied at its closes
 
 TEST_CASE("patches from the real zara01 data tile a box perfectly") {
   const auto dir = test::real_data_dir();
-  const CrowdFile data = import_real_dataset(dir / "zara01", RealDatasetOptions{});
+  const CrowdFile data = import_crowd(dir / "zara01").crowd;
   RealPatchOptions o;
   o.max_pair_patches = 6;
   o.max_single_patches = 6;

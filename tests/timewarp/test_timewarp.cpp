@@ -185,7 +185,10 @@ TEST_CASE("agents entering and leaving keep their presence through the warp") {
     }
   }
   const Result r = time_warp(deformed, reference, Options{});
-  const double enter = r.warp.warped_times[10], leave = r.warp.warped_times[40];
+  // Present over its warped samples' span, widened to the output frames nearest its first and last samples: by
+  // half an output interval (0.05 s at 10 Hz), but less than half the way to the frames where it is absent.
+  const std::vector<double>& w = r.warp.warped_times;
+  const double enter = w[10] - std::min(0.05, 0.5 * (w[10] - w[9])), leave = w[40] + std::min(0.05, 0.5 * (w[41] - w[40]));
   for (std::size_t k = 0; k < r.crowd.frame_count(); ++k) {
     const double t = r.crowd.times[k];
     INFO("output time " << t << ", present from " << enter << " to " << leave);

@@ -2,6 +2,7 @@
 // the job runs: tiling/runner.h prepare()).
 #include <throng/core/errors.h>
 #include <throng/core/format.h>
+#include <throng/io/data_options.h>
 #include <throng/io/scene_config.h>
 #include <throng/io/tiling_job.h>
 #include <throng/tiling/schema.h>
@@ -160,8 +161,15 @@ void read_preference(const ConfigNode& job, TilingJob& parsed) {
 
 }  // namespace
 
+void describe(OptionBinder& b, TilingJob& job) {
+  tiling::describe(b, static_cast<tiling::Job&>(job));
+  b.section("library", [&](OptionBinder& l) {
+    if (l.present({.key = "real"}, job.library.real)) l.section("real", [&](OptionBinder& r) { describe_reading(r, job.real_import); });
+  });
+}
+
 void read_job(const ConfigNode& job, TilingJob& parsed) {
-  read_options(job, tiling::describe, static_cast<tiling::Job&>(parsed));
+  read_options(job, static_cast<void (*)(OptionBinder&, TilingJob&)>(describe), parsed);
   parsed.environment.scene = read_scene(job);
   if (!parsed.environment.scene.region) job.fail("a tiling job needs `region: {min, max, time, periodic}`: the box to fill");
   parsed.environment.sources = read_zones(job, "sources");
@@ -186,7 +194,7 @@ void read_job(const ConfigNode& job, TilingJob& parsed) {
 
 YAML::Node effective_job(const TilingJob& job) {
   YAML::Node out(YAML::NodeType::Map);  // a map before the writer holds it (yaml-cpp nodes share only then)
-  write_options(out, tiling::describe, static_cast<const tiling::Job&>(job));
+  write_options(out, static_cast<void (*)(OptionBinder&, TilingJob&)>(describe), job);
   write_scene(out, job.environment.scene);
   const LibrarySpec& spec = job.library;
   YAML::Node lib = out["library"];

@@ -51,12 +51,15 @@ MergeRun run(const Crowds& inputs, const MergeJob& job, Progress& progress, cons
 
 void describe(ReportWriter& w, const MergeRun& run) {
   const CrowdMotion& m = run.crowd.motion;
-  std::vector<std::size_t> cross, left_out;
+  std::vector<std::size_t> cross, left_out, joined;
+  std::size_t shared_obstacles = 0;
   std::size_t interpolated = 0;
   bool dropped = false;
   for (const MergeReport& r : run.reports) {
     cross.push_back(r.cross_edges);
     left_out.push_back(r.left_out_first + r.left_out_second);
+    joined.push_back(r.joined);
+    shared_obstacles += r.shared_obstacles;
     interpolated += r.interpolated_frames_first + r.interpolated_frames_second;
     dropped = dropped || r.velocities_dropped;
   }
@@ -70,6 +73,8 @@ void describe(ReportWriter& w, const MergeRun& run) {
   w.counts("left_out", left_out);
   w.flag("velocities_dropped", dropped);
   w.count("obstacles", run.crowd.scene.obstacles.size());
+  w.count("shared_obstacles", shared_obstacles);
+  w.counts("joined", joined);
 }
 
 }  // namespace throng::stitch

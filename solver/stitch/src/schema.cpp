@@ -39,6 +39,12 @@ void describe(OptionBinder& b, MergeOptions& o) {
            o.span, {{"overlap", MergeSpan::overlap}, {"union", MergeSpan::union_of_spans}});
   b.choice({.key = "on_id_clash", .flag = "--on-id-clash", .help = "shift: a later crowd's ids move above the earlier ones'"},
            o.on_id_clash, {{"shift", IdClash::shift}, {"error", IdClash::error}});
+  b.choice({.key = "join_by", .flag = "--join-by",
+            .help = "id: agents with the same id in two crowds are one agent (clips of one recording); none: renumber"},
+           o.join_by, {{"none", JoinBy::none}, {"id", JoinBy::id}});
+  b.field({.key = "join_tolerance", .unit = "m", .range = Range::non_negative(), .flag = "--join-tolerance",
+           .help = "joined by id: one agent's samples at one frame must be this close"},
+          o.join_tolerance_m);
   b.field({.key = "time_tolerance", .unit = "s", .range = Range::non_negative(), .flag = "--time-tolerance",
            .help = "frame times closer than this are one frame"},
           o.time_tolerance_s);

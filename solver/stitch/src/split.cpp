@@ -20,6 +20,10 @@ CrowdMotion copy_part(const CrowdMotion& crowd, std::size_t first, std::size_t l
   out.times.assign(crowd.times.begin() + static_cast<std::ptrdiff_t>(first), crowd.times.begin() + static_cast<std::ptrdiff_t>(last) + 1);
   const bool velocities = !crowd.velocities.empty();
   if (velocities) out.velocities.assign(out.positions.size(), absent);
+  const bool facing = !crowd.orientations.empty(), acting = !crowd.actions.empty();
+  if (facing) out.orientations.assign(frames * agents.size() * 4, absent);
+  if (acting) out.actions.assign(frames * agents.size(), -1);
+  out.action_table = crowd.action_table;
   for (std::size_t k = 0; k < agents.size(); ++k) {
     const std::size_t a = agents[k];
     out.ids[k] = crowd.ids[a];
@@ -30,6 +34,8 @@ CrowdMotion copy_part(const CrowdMotion& crowd, std::size_t first, std::size_t l
       const auto to = static_cast<std::ptrdiff_t>(out.index(f, k));
       std::copy_n(crowd.positions.begin() + from, 3, out.positions.begin() + to);
       if (velocities) std::copy_n(crowd.velocities.begin() + from, 3, out.velocities.begin() + to);
+      if (facing) out.orientation(f, k) = crowd.orientation(first + f, a);
+      if (acting) out.action(f, k) = crowd.action(first + f, a);
     }
   }
   return out;

@@ -38,6 +38,27 @@ void write_samples(const CubicSpline& spline, const std::vector<std::size_t>& ag
   }
 }
 
+// Facing and action of agent `a` at output times[begin, end) from its run of frames first..last (knots clamped
+// as for the positions): orientations slerp between the two frames around each time, the action is the one of the
+// frame at or before it.
+void write_pose(const CrowdMotion& crowd, std::size_t a, std::size_t first, std::size_t last, const std::vector<double>& knot_times,
+                const std::vector<double>& times, std::size_t begin, std::size_t end, CrowdMotion& out) {
+  const auto knots_begin = knot_times.begin() + static_cast<std::ptrdiff_t>(first);
+  const auto knots_end = knot_times.begin() + static_cast<std::ptrdiff_t>(last) + 1;
+  for (std::size_t k = begin; k < end; ++k) {
+    const double t = std::clamp(times[k], knot_times[first], knot_times[last]);
+    // The frame at or before t within the run, and the one after it (the same at the run's last frame).
+    const std::size_t at = first + static_cast<std::size_t>(std::upper_bound(knots_begin, knots_end, t) - knots_begin) - 1;
+    const std::size_t next = std::min(at + 1, last);
+    if (!crowd.orientations.empty()) {
+      const double u = next == at ? 0.0 : (t - knot_times[at]) / (knot_times[next] - knot_times[at]);
+      out.orientation(k, a) = crowd.orientation(at, a).slerp(u, Eigen::Quaterniond(crowd.orientation(next, a))).normalized();
+    }
+    if (!crowd.actions.empty()) out.action(k, a) = crowd.action(at, a);
+  }
+}
+
+
 }  // namespace
 
 std::vector<double> uniform_times(double start, double end, double rate_hz) {
@@ -72,7 +93,7 @@ double frame_rate(const CrowdMotion& crowd) {
 }
 
 CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& knot_times, const std::vector<double>& times,
-                           SplineEnd end, bool with_velocities) {
+                           SplineEnd end, bool with_velocities, double end_slack_s) {
   const std::size_t frames = crowd.frame_count();
   const std::size_t agents = crowd.agent_count();
   if (knot_times.size() != frames) {
@@ -87,6 +108,12 @@ CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& 
   out.radii = crowd.radii;
   out.species = crowd.species;
   if (with_velocities) out.velocities.assign(out.positions.size(), absent);
+  if (!crowd.orientations.empty()) out.orientations.assign(times.size() * agents * 4, absent);
+  if (!crowd.actions.empty()) out.actions.assign(times.size() * agents, -1);
+  out.action_table = crowd.action_table;
+  if (!(std::isfinite(end_slack_s) && end_slack_s >= 0)) {
+    throw ConfigError("resampling: end slack " + std::to_string(end_slack_s) + " s: expected a finite time ≥ 0");
+  }
   if (frames == 0 || agents == 0 || times.empty()) return out;
   const double slack = 1e-9 * std::max(1.0, std::abs(knot_times.back() - knot_times.front()));
 
@@ -105,10 +132,15 @@ CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& 
       }
     }
     const CubicSpline spline(knot_times, std::move(values), end);
-    const auto [begin, stop] = times_within(times, knot_times.front(), knot_times.back(), slack);
+    const auto [begin, stop] = times_within(times, knot_times.front() - end_slack_s, knot_times.back() + end_slack_s, slack);
     parallel_for(stop - begin, 16, [&](std::size_t b, std::size_t e) {
       write_samples(spline, whole, times, begin + b, begin + e, with_velocities, out);
     });
+    if (!crowd.orientations.empty() || !crowd.actions.empty()) {
+      parallel_for(whole.size(), 16, [&](std::size_t b, std::size_t e) {
+        for (std::size_t w = b; w < e; ++w) write_pose(crowd, whole[w], 0, frames - 1, knot_times, times, begin, stop, out);
+      });
+    }
   } else {
     partial.insert(partial.end(), whole.begin(), whole.end());
     std::sort(partial.begin(), partial.end());
@@ -125,7 +157,10 @@ CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& 
         }
         std::size_t last = f;
         while (last + 1 < frames && crowd.present(last + 1, a)) ++last;
-        const auto [begin, stop] = times_within(times, knot_times[f], knot_times[last], slack);
+        // The slack, but less than half the way to a neighbouring frame where the agent is absent.
+        const double before = f > 0 ? std::min(end_slack_s, 0.5 * (knot_times[f] - knot_times[f - 1])) : end_slack_s;
+        const double after = last + 1 < frames ? std::min(end_slack_s, 0.5 * (knot_times[last + 1] - knot_times[last])) : end_slack_s;
+        const auto [begin, stop] = times_within(times, knot_times[f] - before, knot_times[last] + after, slack);
         if (last == f) {
           for (std::size_t k = begin; k < stop; ++k) {
             const std::size_t at = out.index(k, a);
@@ -140,6 +175,7 @@ CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& 
                                    std::move(values), end);
           write_samples(spline, {a}, times, begin, stop, with_velocities, out);
         }
+        if (!crowd.orientations.empty() || !crowd.actions.empty()) write_pose(crowd, a, f, last, knot_times, times, begin, stop, out);
         f = last + 1;
       }
     }

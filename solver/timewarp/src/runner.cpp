@@ -33,6 +33,7 @@ void describe(ReportWriter& w, const Run& run) {
   w.count("frames", r.frames_out);
   w.number("duration_in_s", r.duration_in_s);
   w.number("duration_s", r.duration_out_s);
+  w.number("warped_duration_s", r.warped_duration_s);
   w.number("output_rate", r.output_rate_hz);
   w.number("speed_deviation_before_mps", r.speed_deviation_before);
   w.number("speed_deviation_after_mps", r.speed_deviation_after);

@@ -250,7 +250,7 @@ Warp solve_warp(const CrowdMotion& deformed, const CrowdMotion& reference, const
     for (std::size_t i = 0; i < n; ++i) s_before[i] = 1.0 / dt[i];
     deviations(deformed, reference, s_before, warp.inverse_intervals, *report);
     report->duration_in_s = deformed.times.back() - deformed.times.front();
-    report->duration_out_s = warp.warped_times.back() - warp.warped_times.front();
+    report->warped_duration_s = warp.warped_times.back() - warp.warped_times.front();
   }
   return warp;
 }
@@ -261,9 +261,15 @@ Result time_warp(const CrowdMotion& deformed, const CrowdMotion& reference, cons
   const CrowdMotion matched = match_reference(deformed, reference, options.time_tolerance_s);
   result.warp = solve_warp(deformed, matched, options, &result.report);
   const double rate = options.output_rate_hz > 0 ? options.output_rate_hz : frame_rate(deformed);
-  const std::vector<double> times = uniform_times(result.warp.warped_times.front(), result.warp.warped_times.back(), rate);
-  result.crowd = resample_crowd(deformed, result.warp.warped_times, times, options.spline_end, true);
+  // The output frames run to the one nearest the warped end, and every agent's first and last samples land on the
+  // output frames nearest them (half an output interval of slack): a warp that moves the end by less than half a
+  // frame keeps every sample instead of dropping the last one.
+  const double half_frame = 0.5 / rate;
+  const std::vector<double> times =
+      uniform_times(result.warp.warped_times.front(), result.warp.warped_times.back() + half_frame, rate);
+  result.crowd = resample_crowd(deformed, result.warp.warped_times, times, options.spline_end, true, half_frame);
   result.report.frames_out = result.crowd.frame_count();
+  result.report.duration_out_s = times.back() - times.front();
   result.report.output_rate_hz = rate;
   return result;
 }

@@ -15,6 +15,11 @@ namespace throng {
 /// `columns`, `units`, `radius`, `wall_thickness`.
 void describe(OptionBinder& b, ImportOptions& o);
 
+/// The options that say how to read the data's content, for a recorded crowd another job reads (a tiling
+/// library's `library.real`): `fps`, `credit`, `columns`, `units` (import's keys and flags; the rest —
+/// species, obstacles, radius — is import's own: a tiling library takes only the paths).
+void describe_reading(OptionBinder& b, ImportOptions& o);
+
 /// What `throng plot` and the `plot` step draw.
 struct PlotJob {
   PlotOptions picture;

@@ -7,6 +7,9 @@
 //
 //   span: overlap                 # overlap: the frames every crowd shares (no overlap is an error) | union
 //   on_id_clash: shift            # shift: a later crowd's ids move above the earlier ones' | error
+//   join_by: none                 # none: every agent of a later crowd is another agent | id: the same id is the
+//                                 #   same agent (clips of one recording joined back; merge.h)
+//   join_tolerance: 1e-6          # metres: joined by id, one agent's two samples at one frame must be this close
 //   time_tolerance: 1e-6          # seconds: frame times closer than this are one frame
 //   max_edge_length: 0            # metres: stored formation edges longer than this are dropped (0: keep all)
 //   obstacles: [...]              # added to the union of the crowds' scenes (the shared environment, e.g. a

@@ -12,8 +12,14 @@
 //     builtin_options: {sample_rate: 10, radius: 0.25, walk_speed: 1.3, walk_duration: 2, wait_duration: 2,
 //                       preference_per_character: 1}
 //     real:                          # optional: patches built from recorded trajectories (throng/tiling/construct.h)
-//       dataset: ../data/real/zara01 # a dataset folder, relative to the job file's folder; the effective job and
-//                                    # the provenance name the resolved folder
+//       dataset: ../data/real/zara01 # recorded data in any format `throng import` reads (import_crowd.h: an
+//                                    # ETH/UCY folder or obsmat.txt, frame-id-x-y, PeTrack, CSV, PedPy HDF5, a
+//                                    # crowd file), relative to the job file's folder; the effective job and the
+//                                    # provenance name the resolved path
+//       fps: 25                      # how to read it, as import's keys (flags --fps --columns --units --credit):
+//       columns: "frame=f,id=p,x=X,y=Y"  # fps where the data states no rate, a CSV's column map, the positions'
+//       units: cm                    # unit, a credit added to the data's own (absent: the format's own)
+//       credit: "..."
 //       sample_rate: 10              # and every RealPatchOptions field: max_gap, radius, standing_speed,
 //       near: 1.5                    # clean_acceleration, min_contact, margin, reaction_min, synchronicity_min,
 //       max_pair_patches: 20         # single_duration, max_single_patches, preference_per_character
@@ -52,6 +58,7 @@
 // from the importer.
 #pragma once
 
+#include <throng/io/import_crowd.h>
 #include <throng/io/job_file.h>
 #include <throng/io/tiling_data.h>
 #include <throng/tiling/runner.h>
@@ -63,8 +70,12 @@ namespace throng {
 /// A parsed tiling job: the method's job (tiling/runner.h; the seed stays at its default: the command sets it
 /// from --seed) and the recorded crowd its library takes patches from.
 struct TilingJob : tiling::Job {
-  std::string real_dataset;  ///< the resolved dataset folder of library.real; empty: none
+  std::string real_dataset;  ///< the resolved path of library.real.dataset (a file or a folder); empty: none
+  ImportOptions real_import; ///< how import_crowd reads it: library.real's fps, columns, units, credit
 };
+
+/// The job's schema: the method's (tiling::describe) and library.real's reading options (describe_reading).
+void describe(OptionBinder& b, TilingJob& job);
 
 /// Reads and checks a whole job, then calls node.finish(). Imports nothing and builds nothing.
 void read_job(const ConfigNode& node, TilingJob& job);

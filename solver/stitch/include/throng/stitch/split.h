@@ -2,7 +2,8 @@
 // motion clip can be split into multiple clips in the time domain"): by time — the two halves share the frame
 // where they are cut, so stitching them back gives t + t′ − 1 frames (§5) — and by agents.
 //
-// Both keep the data exactly (positions, velocities, ids, radii, species, times); the scene is the caller's
+// Both keep the data exactly (positions, velocities, ids, radii, species, times, and facing, actions and the
+// action table when the crowd has them); the scene is the caller's
 // business (both parts keep it). A part keeps only the agents present somewhere in it, unless the caller asks for
 // the agents present throughout (a clip, as editing and stitching need).
 #pragma once

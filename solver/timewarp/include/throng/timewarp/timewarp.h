@@ -25,8 +25,12 @@
 //    If nobody moves anywhere the warp is the identity.
 //  * Terms use only the (interval, agent) pairs where the agent is present at both frames in both crowds, so
 //    agents entering and leaving are fine. Steps are measured in 3-D (z is 0 for 2-D crowds).
-//  * Output: frames at start, start + 1/rate, ... within the warped duration (the warped end is included only when
-//    it falls on that grid); the first frame keeps its time. Velocities are the splines' derivatives.
+//  * Output: frames at start, start + 1/rate, ... up to the one nearest the warped end (within half an output
+//    interval of it, before or after); the first frame keeps its time. An agent's first and last samples land on
+//    the output frames nearest their warped times (resample_crowd's end slack of half an output interval, the end
+//    position held): a small warp (tens of ms) moves no sample off the output. The report's duration is that of
+//    the frames written. Velocities are the splines' derivatives; facing (slerp) and actions (the sample at or
+//    before) are carried when the input has them.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -81,7 +85,9 @@ struct Report {
   int active_set_iterations = 0;
   double speed_deviation_before = 0, speed_deviation_after = 0;  ///< m/s
   double reference_speed_rms = 0;     ///< m/s, for scale
-  double duration_in_s = 0, duration_out_s = 0;
+  double duration_in_s = 0;           ///< last − first time of the input's frames
+  double warped_duration_s = 0;       ///< the warp's span: last − first warped frame time
+  double duration_out_s = 0;          ///< last − first time of the frames written (time_warp; 0 from solve_warp)
   double output_rate_hz = 0;
 };
 
