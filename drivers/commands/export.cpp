@@ -48,10 +48,10 @@ class ExportCommand final : public Command {
     if (context.print_config_if_asked(effective)) return;
     std::filesystem::path output = output_;
     if (output.empty()) {
-      if (!request.format) {
+      if (request.format.empty()) {
         throw ConfigError("export: give --format (" + join_export_format_names() + ") or an output file (-o)");
       }
-      output = default_export_output(*request.format, input_);
+      output = default_export_output(parse_export_format(request.format), input_);
     }
     const ExportFormat format = resolve_format(request, output);
     const ExportSummary s = export_crowd(format, input_, output, request.options, pedpy_options(request));
