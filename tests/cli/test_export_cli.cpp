@@ -249,4 +249,13 @@ TEST_CASE("a throng run job exports its crowd as steps, by format key or by the 
   CHECK(run("run " + (dir / "xdmf.yaml").string(), &out) == 2);
   CHECK_THAT(out, Contains("step 2/2 export") && Contains("xdmf points into a crowd file on disk"));
   CHECK_FALSE(std::filesystem::exists(dir / "zara.xmf"));
+
+  // An export step never writes onto the crowd file it reads (exit 2, the file untouched).
+  const auto size = std::filesystem::file_size(dir / "crowd.h5");
+  test::write_file(dir / "same.yaml", "steps:\n  - step: export\n    input: crowd.h5\n    format: pedpy\n"
+                                      "    output: " + (dir / "crowd.h5").string() + "\n");
+  CHECK(run("run " + (dir / "same.yaml").string(), &out) == 2);
+  CHECK_THAT(out, Contains("step 1/1 export") && Contains("is the input file"));
+  CHECK(std::filesystem::file_size(dir / "crowd.h5") == size);
+  CHECK(read_crowd_file(dir / "crowd.h5").motion.agent_count() == 6);
 }
