@@ -3,6 +3,7 @@
 #include "rank_outcome.h"
 
 #include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
 
 #include <cstdio>
 #include <exception>
@@ -97,6 +98,21 @@ std::vector<const CrowdFile*> inputs_of(const ConfigNode& step, std::map<std::st
   return inputs;
 }
 
+// A step that writes its own file (export, plot) never writes onto a crowd file it reads: the input is left
+// untouched, as `throng export CROWD.h5 -o CROWD.h5` leaves it (ConfigError, exit 2).
+void check_output_is_not_an_input(const ConfigNode& step) {
+  const auto output = step.find("output");
+  if (!output) return;
+  auto check = [&](const ConfigNode& ref) {
+    std::error_code ec;
+    if (std::filesystem::exists(ref.as_path(), ec)) check_distinct(ref.as_path(), output->as_string());
+  };
+  if (auto in = step.find("input")) check(*in);
+  if (auto ins = step.find("inputs")) {
+    for (const auto& in : ins->elements()) check(in);
+  }
+}
+
 }  // namespace
 
 StdoutRedirect::StdoutRedirect(int target) {
@@ -156,6 +172,7 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
       Context::ProgressScope scope(context, static_cast<double>(i) / steps.size(), 1.0 / steps.size(), label);
       try {
         inputs = inputs_of(step, named, last, command->reads_crowds());
+        if (!command->makes_crowd()) check_output_is_not_an_input(step);
         const ConfigNode own = own_keys(step, command->makes_crowd());
         if (collective && !command->makes_crowd()) {
           result = on_rank_0([&] { return command->run_step(own, inputs, context); }, context.communicator());

@@ -81,11 +81,11 @@ TEST_CASE("import a real dataset, describe it as JSON, export CSV and plot it") 
   CHECK_THAT(info["provenance"]["credits"][0].get<std::string>(), Contains("Crowds by example"));
   CHECK_THAT(info["provenance"]["command_line"].get<std::string>(), Contains("import"));
 
-  REQUIRE(run("export " + h5 + " --csv -o " + (dir / "zara.csv").string(), &out) == 0);
+  REQUIRE(run("export " + h5 + " --format csv -o " + (dir / "zara.csv").string(), &out) == 0);
   std::ifstream csv(dir / "zara.csv");
   std::string header;
   std::getline(csv, header);
-  CHECK(header == "time,id,x,y,z");
+  CHECK(header == "frame,time,id,x,y,z,qx,qy,qz,qw,heading_deg,action,prop,radius,species");
 
   REQUIRE(run("plot " + h5 + " -o " + (dir / "zara.svg").string() + " --frames 10,20,-1", &out) == 0);
   CHECK(std::filesystem::file_size(dir / "zara.svg") > 10000);
@@ -96,7 +96,7 @@ TEST_CASE("a failing command leaves no output and no temporary file behind") {
   std::ofstream(dir / "bad.h5") << "not hdf5";
   std::string out;
   CHECK(run("plot " + (dir / "bad.h5").string() + " -o " + (dir / "p.svg").string(), &out) == 3);
-  CHECK(run("export " + (dir / "bad.h5").string() + " --csv -o " + (dir / "p.csv").string(), &out) == 3);
+  CHECK(run("export " + (dir / "bad.h5").string() + " --format csv -o " + (dir / "p.csv").string(), &out) == 3);
   CHECK(run("import " + (dir / "nowhere").string() + " -o " + (dir / "p.h5").string(), &out) == 4);
   CHECK(files_in(dir) == 1);
 }
@@ -111,7 +111,7 @@ TEST_CASE("an output naming its own input is refused with exit 2 and the input i
   write_crowd_file(dir / "c.h5", f);
   const auto size = std::filesystem::file_size(dir / "c.h5");
   std::string out;
-  CHECK(run("export " + (dir / "c.h5").string() + " --csv -o " + (dir / "c.h5").string(), &out) == 2);
+  CHECK(run("export " + (dir / "c.h5").string() + " --format csv -o " + (dir / "c.h5").string(), &out) == 2);
   CHECK_THAT(out, Contains("is the input file"));
   CHECK(std::filesystem::file_size(dir / "c.h5") == size);
 }

@@ -11,6 +11,7 @@
 #include <throng/edit/runner.h>
 #include <throng/formation/runner.h>
 #include <throng/io/data_options.h>
+#include <throng/io/export/request.h>
 #include <throng/io/tiling_job.h>
 #include <throng/sketch/runner.h>
 #include <throng/stitch/jobs.h>
@@ -81,7 +82,7 @@ std::vector<CommandCase> commands() {
       {"plot", "nowhere.h5 -o out.svg", J::none, "", {}, fields_of<PlotJob>(describe)},
       {"check-tiling", "nowhere.h5", J::none, "", {}, fields_of<CheckTilingJob>(describe)},
       {"check-motion", "nowhere.h5 --reference elsewhere.h5", J::none, "", {}, fields_of<check::Job>(check::describe)},
-      {"export", "nowhere.h5 --csv -o out.csv", J::none, "", {}, {}},
+      {"export", "nowhere.h5 -o out.csv", J::none, "", {}, fields_of<ExportRequest>(describe)},
       {"info", "nowhere.h5", J::none, "", {}, {}},
   };
 }

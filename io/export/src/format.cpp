@@ -1,4 +1,5 @@
 #include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
 #include <throng/io/export/csv_table.h>
 #include <throng/io/export/format.h>
 #include <throng/io/export/gltf.h>
@@ -6,10 +7,37 @@
 #include <throng/io/export/xdmf.h>
 
 namespace throng {
+namespace {
+
+// The output's folder exists: checked before the crowd is read, with AtomicOutput's message.
+void check_output_folder(const std::filesystem::path& output) {
+  std::filesystem::path folder = output.parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) {
+    throw IoError(output.string() + ": cannot write, folder " + folder.string() + " does not exist");
+  }
+}
+
+std::size_t present_count(const CrowdMotion& m) {
+  std::size_t rows = 0;
+  for (std::size_t t = 0; t < m.frame_count(); ++t) {
+    for (std::size_t n = 0; n < m.agent_count(); ++n) rows += m.present(t, n) ? 1 : 0;
+  }
+  return rows;
+}
+
+}  // namespace
 
 const std::vector<std::string>& export_format_names() {
   static const std::vector<std::string> names{"xdmf", "gltf", "usd", "pedpy", "csv"};
   return names;
+}
+
+std::string join_export_format_names() {
+  std::string known;
+  for (const auto& n : export_format_names()) known += (known.empty() ? "" : ", ") + n;
+  return known;
 }
 
 ExportFormat parse_export_format(const std::string& name) {
@@ -17,9 +45,7 @@ ExportFormat parse_export_format(const std::string& name) {
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (names[i] == name) return static_cast<ExportFormat>(i);
   }
-  std::string known;
-  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
-  throw ConfigError("unknown export format '" + name + "', expected one of: " + known);
+  throw ConfigError("unknown export format '" + name + "', expected one of: " + join_export_format_names());
 }
 
 std::string export_extension(ExportFormat format) {
@@ -33,15 +59,49 @@ std::string export_extension(ExportFormat format) {
   return {};
 }
 
-void export_crowd(ExportFormat format, const std::filesystem::path& crowd, const std::filesystem::path& output,
-                  const ExportOptions& options, const PedpyOptions& pedpy) {
-  switch (format) {
-    case ExportFormat::xdmf: export_xdmf(crowd, output); return;
-    case ExportFormat::gltf: export_gltf(crowd, output, options); return;
-    case ExportFormat::usd: export_usd(crowd, output, options); return;
-    case ExportFormat::pedpy: export_pedpy(crowd, output, pedpy, options); return;
-    case ExportFormat::csv: export_csv(crowd, output, options); return;
+std::optional<ExportFormat> export_format_of(const std::filesystem::path& output) {
+  const std::string extension = output.extension().string();
+  for (const auto& name : export_format_names()) {
+    const ExportFormat format = parse_export_format(name);
+    if (export_extension(format) == extension) return format;
   }
+  return std::nullopt;
+}
+
+std::filesystem::path default_export_output(ExportFormat format, const std::filesystem::path& crowd) {
+  std::filesystem::path output = crowd;
+  return output.replace_extension(format == ExportFormat::pedpy ? ".pedpy.h5" : export_extension(format));
+}
+
+ExportSummary export_crowd(ExportFormat format, const std::filesystem::path& crowd, const std::filesystem::path& output,
+                           const ExportOptions& options, const PedpyOptions& pedpy) {
+  if (format == ExportFormat::xdmf) {
+    const CrowdShape shape = export_xdmf(crowd, output);
+    return {.files = {output}, .agents = shape.agents, .frames = shape.frames};
+  }
+  check_distinct(crowd, output);
+  if (format == ExportFormat::csv) check_distinct(crowd, csv_obstacles_path(output));
+  check_output_folder(output);
+  return export_crowd(format, read_crowd_file(crowd), output, options, pedpy);
+}
+
+ExportSummary export_crowd(ExportFormat format, const CrowdFile& crowd, const std::filesystem::path& output,
+                           const ExportOptions& options, const PedpyOptions& pedpy) {
+  ExportSummary summary{.files = {output}, .agents = crowd.motion.agent_count(), .frames = crowd.motion.frame_count()};
+  switch (format) {
+    case ExportFormat::xdmf:
+      throw ConfigError("xdmf points into a crowd file on disk and this crowd is held in memory: write the crowd "
+                        "(a step's output) and export that file");
+    case ExportFormat::gltf: export_gltf(crowd, output, options); break;
+    case ExportFormat::usd: export_usd(crowd, output, options); break;
+    case ExportFormat::pedpy: export_pedpy(crowd, output, pedpy, options); break;
+    case ExportFormat::csv:
+      export_csv(crowd, output, options);
+      summary.files.push_back(csv_obstacles_path(output));
+      break;
+  }
+  summary.rows = present_count(crowd.motion);
+  return summary;
 }
 
 }  // namespace throng

@@ -163,7 +163,7 @@ class XdmfWriter {
 
 }  // namespace
 
-void export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path& output) {
+CrowdShape export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path& output) {
   check_distinct(crowd, output);
   detail::OutputFile file(output);
   const Layout layout = read_layout(crowd);
@@ -174,6 +174,7 @@ void export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path
   if (ec || reference.empty()) reference = std::filesystem::absolute(crowd);
   file.write(XdmfWriter(layout, xml_escape(reference.string())).document());
   file.commit();
+  return {.frames = static_cast<std::size_t>(layout.frames), .agents = static_cast<std::size_t>(layout.agents)};
 }
 
 }  // namespace throng

@@ -17,13 +17,19 @@
 // selects its slice of the .h5 datasets with an XDMF HyperSlab, which ParaView's legacy "XDMF Reader" reads.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 
 namespace throng {
 
+/// The size of the crowd a sidecar describes.
+struct CrowdShape {
+  std::size_t frames = 0, agents = 0;
+};
+
 /// Writes `output` (conventionally the crowd's name with .xmf, beside it) atomically, referring to `crowd` by its
 /// path relative to the .xmf's folder. Reads the crowd's layout and frame times only. IoError / InputError for a missing or
 /// malformed crowd file, IoError when the output folder does not exist.
-void export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path& output);
+CrowdShape export_xdmf(const std::filesystem::path& crowd, const std::filesystem::path& output);
 
 }  // namespace throng
