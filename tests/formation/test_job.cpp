@@ -312,7 +312,7 @@ TEST_CASE("the result lists each keyframe's frame and graph and the crowd's form
   }
 }
 
-TEST_CASE("a keyframe's facing: degrees for everyone, one per individual, or toward a point; and the facing options") {
+TEST_CASE("a keyframe's facing: degrees for everyone, one per individual, or toward a point, and the facing options") {
   auto yaw_deg = [](const Eigen::Quaterniond& q) {
     const Eigen::Vector3d forward = q * Eigen::Vector3d::UnitX();
     return std::atan2(forward.y(), forward.x()) * 180.0 / std::numbers::pi;

@@ -4,6 +4,26 @@
 #include <cmath>
 
 namespace throng::formation {
+namespace {
+
+// The fastest speed of any individual over the frame intervals of keyframe interval k.
+double interval_speed(const CrowdMotion& m, const std::vector<std::size_t>& keyframe_frames, std::size_t k) {
+  double fastest = 0;
+  for (std::size_t f = keyframe_frames[k]; f < keyframe_frames[k + 1]; ++f) {
+    const double dt = m.times[f + 1] - m.times[f];
+    for (std::size_t n = 0; n < m.agent_count(); ++n)
+      fastest = std::max(fastest, (m.position(f + 1, n) - m.position(f, n)).norm() / dt);
+  }
+  return fastest;
+}
+
+double fastest_speed(const CrowdMotion& m, const std::vector<std::size_t>& keyframe_frames) {
+  double v = 0;
+  for (std::size_t k = 0; k + 1 < keyframe_frames.size(); ++k) v = std::max(v, interval_speed(m, keyframe_frames, k));
+  return v;
+}
+
+}  // namespace
 
 double keyframe_speed(const CrowdMotion& motion, const std::vector<std::size_t>& keyframe_frames) {
   double fastest = 0;
@@ -17,26 +37,60 @@ double keyframe_speed(const CrowdMotion& motion, const std::vector<std::size_t>&
   return fastest;
 }
 
-void guard_formation(Result& result, const Options& options) {
+void guard_formation(Problem& problem, Result& result, const Options& options, Progress& progress) {
   if (!options.guard.enabled) return;
-  timewarp::Source source;
-  source.max_speed = options.max_speed_mps > 0 ? options.max_speed_mps : keyframe_speed(result.motion, result.keyframe_frames);
-  std::vector<double> old_times;
-  for (std::size_t f : result.keyframe_frames) old_times.push_back(result.motion.times[f]);
-  source.pinned_times = old_times;  // the smoothing keeps the keyframes
-  timewarp::GuardResult guarded = timewarp::guard(result.motion, source, options.guard);
-  result.motion = std::move(guarded.crowd);
-  result.guard = guarded.report;
-  if (!guarded.report.warped) return;
-  // Each keyframe's frame: the one nearest its warped time.
-  const std::vector<double>& times = result.motion.times;
-  for (std::size_t k = 0; k < old_times.size(); ++k) {
-    const double t = guarded.warp.map(old_times[k]);
-    const auto after = std::lower_bound(times.begin(), times.end(), t);
-    std::size_t f = static_cast<std::size_t>(std::min<std::ptrdiff_t>(after - times.begin(), static_cast<std::ptrdiff_t>(times.size()) - 1));
-    if (f > 0 && std::abs(times[f - 1] - t) <= std::abs(times[f] - t)) --f;
-    result.keyframe_frames[k] = f;
+  timewarp::GuardReport& report = result.guard;
+  report = {};
+  const std::size_t K = problem.keyframes.size();
+  const double stated = options.max_speed_mps > 0 ? options.max_speed_mps : keyframe_speed(result.motion, result.keyframe_frames);
+  report.speed_limit = options.guard.max_speed_ratio * stated;
+  report.max_speed_before = fastest_speed(result.motion, result.keyframe_frames);
+  report.duration_before = problem.keyframes.back().time_s - problem.keyframes.front().time_s;
+  std::vector<double> original(K);
+  for (std::size_t k = 0; k < K; ++k) original[k] = problem.keyframes[k].time_s;
+
+  // 1. Re-timing: each interval lengthened by its own need (aimed 2 % under the limit, for the change of the
+  // neighbouring tangents), to whole frames; repeated while the remade formation is still too fast.
+  const double frame = 1.0 / options.frame_rate_hz;
+  for (int round = 0; round < 4 && report.speed_limit > 0; ++round) {
+    bool stretched = false;
+    std::vector<double> times(K);
+    times[0] = problem.keyframes[0].time_s;
+    for (std::size_t k = 0; k + 1 < K; ++k) {
+      const double length = problem.keyframes[k + 1].time_s - problem.keyframes[k].time_s;
+      const double need = interval_speed(result.motion, result.keyframe_frames, k) / report.speed_limit;
+      double next = length;
+      if (need > 1) {
+        next = std::ceil(length * need / 0.98 / frame - 1e-9) * frame;
+        stretched = true;
+      }
+      times[k + 1] = times[k] + next;
+    }
+    if (!stretched) break;
+    for (std::size_t k = 0; k < K; ++k) problem.keyframes[k].time_s = times[k];
+    progress.update(0.0, "formation guard: re-timed keyframes");
+    result = animate_formation(problem, options, progress);
+    report.warped = true;
   }
+  for (std::size_t k = 0; k + 1 < K; ++k) {
+    report.largest_stretch = std::max(report.largest_stretch, (problem.keyframes[k + 1].time_s - problem.keyframes[k].time_s) /
+                                                                  (original[k + 1] - original[k]));
+    report.stretched_intervals += problem.keyframes[k + 1].time_s - problem.keyframes[k].time_s > original[k + 1] - original[k] ? 1 : 0;
+  }
+  report.duration_after = problem.keyframes.back().time_s - problem.keyframes.front().time_s;
+
+  // 2. Kinks, with the keyframe frames pinned (no further warp: max_speed 0).
+  timewarp::Source source;
+  for (std::size_t f : result.keyframe_frames) source.pinned_times.push_back(result.motion.times[f]);
+  timewarp::GuardResult smoothed = timewarp::guard(result.motion, source, options.guard);
+  result.motion = std::move(smoothed.crowd);
+  report.kinks_before = smoothed.report.kinks_before;
+  report.kinks_after = smoothed.report.kinks_after;
+  report.windows = smoothed.report.windows;
+  report.largest_shift = smoothed.report.largest_shift;
+  report.max_acceleration_before = smoothed.report.max_acceleration_before;
+  report.max_acceleration_after = smoothed.report.max_acceleration_after;
+  report.max_speed_after = fastest_speed(result.motion, result.keyframe_frames);
 }
 
 }  // namespace throng::formation

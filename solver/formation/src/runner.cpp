@@ -37,7 +37,7 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
   if (!inputs.empty()) out.crowd.scene = inputs.front()->scene;
   out.problem = job.problem;
   out.result = animate_formation(job.problem, job.options, progress);
-  guard_formation(out.result, job.options);  // plausible speed and acceleration (plausibility.h)
+  guard_formation(out.problem, out.result, job.options, progress);  // plausible speed and acceleration (plausibility.h)
   out.crowd.motion = std::move(out.result.motion);
   out.result.motion = CrowdMotion{};
   out.crowd.formation_edges = kept_edges(out.result);
@@ -61,9 +61,9 @@ void describe(ReportWriter& w, const Run& run) {
   w.counts("keyframe_frames", r.keyframe_frames);
   w.count("groups", group_count(r.hierarchy));
   w.count("formation_edges", run.crowd.formation_edges.size());
-  if (r.guard.warped || r.guard.windows > 0) {
-    // The plausibility guard (formation.h step 14): how much it slowed the formation and smoothed it.
-    w.flag("guard_warped", r.guard.warped);
+  if (r.guard.speed_limit > 0) {
+    // The plausibility guard (plausibility.h): how much it re-timed the keyframes and smoothed the paths.
+    w.flag("guard_retimed", r.guard.warped);
     w.number("guard_largest_stretch", r.guard.largest_stretch);
     w.number("guard_speed_limit_m_s", r.guard.speed_limit);
     w.number("guard_max_speed_before_m_s", r.guard.max_speed_before);

@@ -7,6 +7,7 @@
 #include <throng/core/progress.h>
 #include <throng/core/report.h>
 #include <throng/core/schema.h>
+#include <throng/timewarp/guard.h>
 #include <throng/timewarp/timewarp.h>
 
 #include <string>
@@ -16,6 +17,11 @@ namespace throng::timewarp {
 
 struct Job {
   Options options;
+  /// After the warp (issue 14): speed held to guard.max_speed_ratio × the reference's fastest and kinks beyond
+  /// guard.max_acceleration (or the reference agent's own largest acceleration, if larger) smoothed (guard.h).
+  /// The warp of Eq. 12 restores speeds in least squares; where the clamp or the fit leaves an agent faster, or a
+  /// resampled seam jerks, the guard finishes the job. guard.enabled = false: the paper's warp alone.
+  GuardOptions guard;
 };
 
 void describe(OptionBinder& b, Job& job);
@@ -25,6 +31,7 @@ struct Run {
   Crowd crowd;
   Warp warp;
   Report report;
+  GuardReport guard;                  ///< what the guard did after the warp
   std::vector<std::string> warnings;  ///< when the clamp acts
   std::string shortfall;              ///< always empty: a warp meets its goal or throws
 };
