@@ -31,12 +31,13 @@ constexpr std::uint8_t walking = static_cast<std::uint8_t>(AgentStatus::walking)
 constexpr std::uint8_t arrived = static_cast<std::uint8_t>(AgentStatus::arrived);
 constexpr std::uint8_t removed = static_cast<std::uint8_t>(AgentStatus::removed);
 
-// The agents' state at one time: positions (metres), walking velocity (m/s, the direction filter's u),
-// target index, status, and the side each agent goes round the obstacle it is sliding along (+1 left, −1 right,
-// 0 none). Structure of arrays.
+// The agents' state at one time: positions (metres), walking velocity (m/s, the direction filter's u; with the
+// paper's rule the step's move over Δt), facing yaw (radians, sketch.h "Facing"), target index, status, and the
+// side each agent goes round the obstacle it is sliding along (+1 left, −1 right, 0 none). Structure of arrays.
 struct State {
   std::vector<double> x, y;
   std::vector<double> ux, uy;
+  std::vector<double> heading;
   std::vector<std::uint32_t> k;
   std::vector<std::uint8_t> status;
   std::vector<std::int8_t> side;
@@ -69,6 +70,21 @@ Eigen::Vector2d coincident_direction(std::uint32_t self, std::uint32_t other) {
   const double angle = 2 * std::numbers::pi * static_cast<double>(derive_seed(lo, hi) >> 11) * 0x1.0p-53;
   const Eigen::Vector2d d(std::cos(angle), std::sin(angle));
   return self < other ? d : Eigen::Vector2d(-d);
+}
+
+// x wrapped to (−π, π].
+double wrapped(double x) {
+  x = std::remainder(x, 2.0 * std::numbers::pi);
+  return x <= -std::numbers::pi ? x + 2.0 * std::numbers::pi : x;
+}
+
+// The facing after a step (sketch.h "Facing"): where the agent walks at least facing_standing_speed_m_s it turns
+// toward its walking velocity u by the low-pass fraction `follow` of the difference, at most `largest_turn`
+// radians; slower, it keeps its facing.
+double next_heading(double heading, const Eigen::Vector2d& u, double follow, double largest_turn) {
+  if (u.squaredNorm() < facing_standing_speed_m_s * facing_standing_speed_m_s) return heading;
+  const double turn = std::clamp(follow * wrapped(std::atan2(u.y(), u.x()) - heading), -largest_turn, largest_turn);
+  return wrapped(heading + turn);
 }
 
 }  // namespace
@@ -219,6 +235,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   s0.y.resize(N);
   s0.ux.assign(N, 0.0);
   s0.uy.assign(N, 0.0);
+  s0.heading.assign(N, 0.0);
   s0.k.resize(N);
   s0.status.assign(N, walking);
   s0.side.assign(N, 0);
@@ -257,6 +274,10 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
       s0.status[j] = arrived;
       arrival[j] = 0.0;
     }
+    // The first facing: toward the first target (where the agent is about to walk), along the course at it.
+    const Eigen::Vector2d ahead = target(j, s0.k[j]) - p;
+    s0.heading[j] = ahead.squaredNorm() > 1e-18 ? std::atan2(ahead.y(), ahead.x())
+                                                : std::atan2(tangent_y[s0.k[j]], tangent_x[s0.k[j]]);
   }
   summarise();
   states[1] = s0;
@@ -378,6 +399,8 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
     const double n = change.norm();
     return largest_change > 0 && n > largest_change ? Eigen::Vector2d(change * (largest_change / n)) : change;
   };
+  const double follow = -std::expm1(-dt / facing_filter_s);  // 1 − exp(−Δt/τ_facing)
+  const double largest_turn = facing_turn_rate_rad_s * dt;
   const bool remove_at_end = options.end_of_path == EndOfPath::remove;
   const bool has_obstacles = !obstacles.empty();
   // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
@@ -422,7 +445,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
         q = p + dt * (before + bounded(relax * (wanted - before)));
       }
       if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
-      if (filtered) u = (q - p) / dt;
+      u = (q - p) / dt;  // filtered: the walking velocity; the paper's rule: the step's move (for the facing)
       // Target advancement (after the move, as in the paper; plus "passed", see sketch.h).
       // With EndOfPath::stop, an agent also stops on reaching the crowd standing at the end (see sketch.h).
       bool joins = false;
@@ -453,13 +476,14 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
           q = p + dt * (before + bounded(relax * (room / dt - before)));
         }
         if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
-        if (filtered) u = (q - p) / dt;
+        u = (q - p) / dt;
       }
     }
     next.x[j] = q.x();
     next.y[j] = q.y();
     next.ux[j] = u.x();
     next.uy[j] = u.y();
+    next.heading[j] = next_heading(s.heading[j], u, follow, largest_turn);
     next.k[j] = k;
     next.status[j] = status;
     next.side[j] = side;
@@ -553,6 +577,40 @@ void Simulation::sample(double time, std::span<double> frame) const {
       } else {
         out[0] = out[1] = out[2] = std::numeric_limits<double>::quiet_NaN();
       }
+    }
+  });
+}
+
+}  // namespace throng::sketch
+
+namespace throng::sketch {
+
+void Simulation::sample_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions) const {
+  const Impl& m = *impl_;
+  assert(orientations.size() == 4 * m.N && actions.size() == m.N);
+  const State& a = m.previous();
+  const State& b = m.now();
+  const double t1 = this->time();
+  const double alpha =
+      m.steps == 0 ? 1.0 : std::clamp((time - (t1 - m.options.time_step_s)) / m.options.time_step_s, 0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  parallel_for(m.N, 4096, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      double* q = orientations.data() + 4 * j;
+      const bool present = b.status[j] != removed || (alpha == 0.0 && a.status[j] != removed);
+      if (!present) {
+        q[0] = q[1] = q[2] = q[3] = nan;
+        actions[j] = -1;
+        continue;
+      }
+      // The yaw along the shorter arc between the step's ends; x = y = 0, (z, w) = (sin, cos) of half the yaw.
+      const double yaw = a.heading[j] + alpha * wrapped(b.heading[j] - a.heading[j]);
+      q[0] = q[1] = 0.0;
+      q[2] = std::sin(0.5 * yaw);
+      q[3] = std::cos(0.5 * yaw);
+      // The speed over the step that holds `time` (the walking velocity u written at its end).
+      const double speed = std::hypot(b.ux[j], b.uy[j]);
+      actions[j] = speed < facing_standing_speed_m_s ? action_stand : speed >= running_speed_m_s ? action_run : action_walk;
     }
   });
 }
