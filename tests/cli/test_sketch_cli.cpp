@@ -126,6 +126,51 @@ print('ok')
   CHECK_THAT(output, Contains("ok"));
 }
 
+TEST_CASE("throng sketch on the shipped paper config writes facing and actions that h5py reads") {
+  // The simulation's facing (sketch.h "Facing and actions") in the file: particles/trajectory/orientation and
+  // action beside position, read with h5py: unit quaternions about +z, a standing agent's facing unchanged,
+  // walking agents facing (within 30°) the way they move over the next second, actions walk/stand/run.
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_facing");
+  const auto out = dir / "paper.h5";
+  REQUIRE(run("--quiet sketch " + config("sketch-paper.yaml") + " -o " + out.string()) == 0);
+  std::ofstream(dir / "check.py") << R"(import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], 'r')
+t = f['particles/trajectory']
+p = t['position/value'][:]
+q = t['orientation/value'][:]
+a = t['action/value'][:]
+assert q.shape == p.shape[:2] + (4,), q.shape
+assert a.shape == p.shape[:2], a.shape
+assert list(t['orientation'].attrs['components']) in (['x', 'y', 'z', 'w'], [b'x', b'y', b'z', b'w'])
+names = [n.decode() if isinstance(n, bytes) else n for n in t['action'].attrs['names']]
+assert names[:3] == ['walk', 'stand', 'run'], names
+present = np.isfinite(p[:, :, 0])
+assert np.allclose(np.linalg.norm(q[present], axis=1), 1, atol=1e-9)
+assert np.allclose(q[present][:, :2], 0)
+assert ((a[present] >= 0) & (a[present] <= 2)).all()
+yaw = 2 * np.arctan2(q[..., 2], q[..., 3])
+turn = np.angle(np.exp(1j * (yaw[1:] - yaw[:-1])))
+standing = (a[1:] == 1) & present[1:] & present[:-1]
+assert standing.sum() > 1000, standing.sum()
+assert np.abs(turn[standing]).max() < 1e-9, np.abs(turn[standing]).max()
+rate = float(1 / (f['particles/trajectory/position/time'][1] - f['particles/trajectory/position/time'][0]))
+k = int(round(rate))
+ahead = p[k:] - p[:-k]
+walking = (a[:-k] == 0) & present[:-k] & present[k:] & (np.linalg.norm(ahead[..., :2], axis=2) > 0.5)
+heading = np.arctan2(ahead[..., 1], ahead[..., 0])
+off = np.abs(np.angle(np.exp(1j * (yaw[:-k] - heading))))[walking]
+assert walking.sum() > 10000, walking.sum()
+assert np.median(off) < np.radians(5) and np.percentile(off, 99) < np.radians(30), (np.median(off), np.percentile(off, 99))
+print('ok', walking.sum(), standing.sum(), np.degrees(np.median(off)))
+)";
+  std::string output;
+  CHECK(test::run_command(python + " " + (dir / "check.py").string() + " " + out.string(), &output) == 0);
+  INFO(output);
+  CHECK_THAT(output, Contains("ok"));
+}
+
 TEST_CASE("the sketch configs are the test scenes") {
   for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
                                     std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {
