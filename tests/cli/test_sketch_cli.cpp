@@ -129,7 +129,7 @@ print('ok')
 TEST_CASE("throng sketch on the shipped paper config writes facing and actions that h5py reads") {
   // The simulation's facing (sketch.h "Facing and actions") in the file: particles/trajectory/orientation and
   // action beside position, read with h5py: unit quaternions about +z, a standing agent's facing unchanged,
-  // walking agents facing (within 30°) the way they move over the next second, actions walk/stand/run.
+  // walking agents facing the way they move over the second around the frame, actions walk/stand/run.
   const std::string python = test::system_python();
   REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
   const auto dir = test::scratch_dir("cli_sketch_facing");
@@ -156,13 +156,14 @@ standing = (a[1:] == 1) & present[1:] & present[:-1]
 assert standing.sum() > 1000, standing.sum()
 assert np.abs(turn[standing]).max() < 1e-9, np.abs(turn[standing]).max()
 rate = float(1 / (f['particles/trajectory/position/time'][1] - f['particles/trajectory/position/time'][0]))
-k = int(round(rate))
-ahead = p[k:] - p[:-k]
-walking = (a[:-k] == 0) & present[:-k] & present[k:] & (np.linalg.norm(ahead[..., :2], axis=2) > 0.5)
+k = int(round(rate / 2))  # the walking direction: where the agent goes over the second around the frame
+ahead = p[2 * k:] - p[:-2 * k]
+walking = (a[k:-k] == 0) & present[2 * k:] & present[:-2 * k] & (np.linalg.norm(ahead[..., :2], axis=2) > 0.3 * 2 * k / rate)
 heading = np.arctan2(ahead[..., 1], ahead[..., 0])
-off = np.abs(np.angle(np.exp(1j * (yaw[:-k] - heading))))[walking]
+off = np.abs(np.angle(np.exp(1j * (yaw[k:-k] - heading))))[walking]
 assert walking.sum() > 10000, walking.sum()
-assert np.median(off) < np.radians(5) and np.percentile(off, 99) < np.radians(30), (np.median(off), np.percentile(off, 99))
+# Jostled agents in the dense parts turn their facing slowly (by design), hence the percentile, not the maximum.
+assert np.median(off) < np.radians(3) and np.percentile(off, 90) < np.radians(15), (np.median(off), np.percentile(off, 90))
 print('ok', walking.sum(), standing.sum(), np.degrees(np.median(off)))
 )";
   std::string output;

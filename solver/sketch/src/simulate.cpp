@@ -58,8 +58,8 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
     sim.sample(time, std::span<double>(motion.positions.data() + m * 3 * N, 3 * N));
     motion.orientations.resize(motion.orientations.size() + 4 * N);
     motion.actions.resize(motion.actions.size() + N);
-    sim.sample_pose(time, std::span<double>(motion.orientations.data() + m * 4 * N, 4 * N),
-                    std::span<std::int32_t>(motion.actions.data() + m * N, N));
+    sim.take_pose(time, std::span<double>(motion.orientations.data() + m * 4 * N, 4 * N),
+                  std::span<std::int32_t>(motion.actions.data() + m * N, N));
   }
   progress.update(1.0, "simulating crowd");
 

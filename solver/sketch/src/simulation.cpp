@@ -108,6 +108,7 @@ struct Simulation::Impl {
   int current = 0;
   std::vector<double> arrival;        // N, seconds or NaN
   std::vector<std::uint8_t> in_grid;  // N, status != removed
+  std::vector<double> fastest;        // N: fastest |u| over the steps since the last take_pose (m/s)
   detail::NeighbourGrid grid;
   detail::ObstacleField obstacles;
   std::size_t steps = 0;
@@ -240,6 +241,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   s0.status.assign(N, walking);
   s0.side.assign(N, 0);
   arrival.assign(N, std::numeric_limits<double>::quiet_NaN());
+  fastest.assign(N, 0.0);
   in_grid.assign(N, 1);
   for (std::size_t j = 0; j < N; ++j) {
     s0.x[j] = agents.start[j].x();
@@ -484,6 +486,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
     next.ux[j] = u.x();
     next.uy[j] = u.y();
     next.heading[j] = next_heading(s.heading[j], u, follow, largest_turn);
+    fastest[j] = std::max(fastest[j], u.norm());  // agent j's own entry: no other task writes it
     next.k[j] = k;
     next.status[j] = status;
     next.side[j] = side;
@@ -585,8 +588,8 @@ void Simulation::sample(double time, std::span<double> frame) const {
 
 namespace throng::sketch {
 
-void Simulation::sample_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions) const {
-  const Impl& m = *impl_;
+void Simulation::take_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions) {
+  Impl& m = *impl_;
   assert(orientations.size() == 4 * m.N && actions.size() == m.N);
   const State& a = m.previous();
   const State& b = m.now();
@@ -601,6 +604,7 @@ void Simulation::sample_pose(double time, std::span<double> orientations, std::s
       if (!present) {
         q[0] = q[1] = q[2] = q[3] = nan;
         actions[j] = -1;
+        m.fastest[j] = 0.0;
         continue;
       }
       // The yaw along the shorter arc between the step's ends; x = y = 0, (z, w) = (sin, cos) of half the yaw.
@@ -608,9 +612,11 @@ void Simulation::sample_pose(double time, std::span<double> orientations, std::s
       q[0] = q[1] = 0.0;
       q[2] = std::sin(0.5 * yaw);
       q[3] = std::cos(0.5 * yaw);
-      // The speed over the step that holds `time` (the walking velocity u written at its end).
-      const double speed = std::hypot(b.ux[j], b.uy[j]);
+      // The fastest walking speed over the steps since the previous frame taken (sketch.h "Facing and actions");
+      // the next frame's interval starts within the current step, so its speed starts the next maximum.
+      const double speed = m.fastest[j];
       actions[j] = speed < facing_standing_speed_m_s ? action_stand : speed >= running_speed_m_s ? action_run : action_walk;
+      m.fastest[j] = std::hypot(b.ux[j], b.uy[j]);
     }
   });
 }

@@ -81,10 +81,11 @@
 //   making room — keeps its last facing. At the start ψ points at the agent's first target. Frames between steps
 //   turn ψ along the shorter arc. So ψ turns at most facing_turn_rate_rad_s / output_rate_hz per frame whatever
 //   the avoidance does (10.8° at 25 fps), and step-to-step swings of u are damped by the low-pass. The action is
-//   the speed class of |u| over the step that holds the frame, with PathPoseRule's thresholds (the exports'
-//   default): stand below facing_standing_speed_m_s (the same test as the kept facing, so a standing agent never
-//   turns), run from running_speed_m_s, walk between; u is filtered, so the class does not flicker with the
-//   avoidance either. The table is standard_actions().
+//   the speed class, with PathPoseRule's thresholds (the exports' default), of the fastest |u| over the steps
+//   that overlap the interval from the previous output frame (frames need not fall on steps: 24 fps against
+//   Δt = 0.04 s): stand below facing_standing_speed_m_s — the same test as the kept facing, so a frame that says
+//   stand has exactly the previous frame's facing —, run from running_speed_m_s, walk between; u is filtered, so
+//   the class does not flicker with the avoidance either. The table is standard_actions().
 // - Determinism: every agent reads only the previous state (two buffers); neighbour sums run in a fixed order
 //   (grid cells, then agent index); random draws come from per-agent streams. Same bits for any thread count.
 #pragma once
@@ -307,10 +308,12 @@ class Simulation {
   /// at step times; a frame between steps lies on the straight move, which can cut a convex corner of the grown
   /// obstacle by at most (v Δt)² / (8 agent_radius_m) (1.6 mm at 1.4 m/s, Δt = 0.04 s, 0.25 m).
   void sample(double time, std::span<double> frame) const;
-  /// Facing and action at `time` (same range as sample()): `orientations` #agents by 4 (x, y, z, w), the yaw
-  /// about +z interpolated along the shorter arc between the steps; `actions` #agents, standard_actions() indices
-  /// from the step's walking speed (see the header comment). NaN and −1 where the agent is absent.
-  void sample_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions) const;
+  /// Facing and action of an output frame at `time` (same range as sample()), frames taken in time order:
+  /// `orientations` #agents by 4 (x, y, z, w), the yaw about +z interpolated along the shorter arc between the
+  /// steps; `actions` #agents, standard_actions() indices from the fastest walking speed over the steps since
+  /// the previous frame taken (the step holding that frame included; see the header comment). NaN and −1 where
+  /// the agent is absent. Not const: it starts the next frame's speed maximum.
+  void take_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions);
 
   [[nodiscard]] const Course& course() const noexcept;
   [[nodiscard]] const AgentParameters& agents() const noexcept;
