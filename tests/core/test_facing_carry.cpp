@@ -62,7 +62,7 @@ TEST_CASE("a path bent by 90° turns a sideways facing by 90°, standing frames 
   }
 }
 
-TEST_CASE("only the agents asked are carried; an input without facing gives none") {
+TEST_CASE("only the agents asked are carried, and an input without facing gives none") {
   CrowdMotion before = walk_stand_walk();
   CrowdMotion plain = before;
   carry_facing_same_frames(plain, before, {0});
@@ -75,7 +75,7 @@ TEST_CASE("only the agents asked are carried; an input without facing gives none
   CHECK(after.orientations == before.orientations);  // not asked: copied bit for bit
 }
 
-TEST_CASE("walk/stand/run follow the new speed where it changed class; other actions pass through") {
+TEST_CASE("walk/stand/run follow the new speed where it changed class, other actions pass through") {
   CrowdMotion before = walk_stand_walk();
   test::face_at_angle_to_path(before, 0.0);
   before.action_table.push_back({"wave", "flag"});

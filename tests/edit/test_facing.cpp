@@ -94,7 +94,7 @@ TEST_CASE("an edit of a group walking sideways keeps the angle between facing an
   CHECK(runs < out.actions.size() / 2);
 }
 
-TEST_CASE("the clip alone carries the facing too; an input without facing gives an output without") {
+TEST_CASE("the clip alone carries the facing too, and an input without facing gives an output without") {
   const Edited e = sideways_group_edited(-pi / 3);
   const CrowdMotion clip = clip_with_velocities(e.input, e.result.crowd, e.result.first_frame);
   REQUIRE(clip.orientations.size() == clip.frame_count() * clip.agent_count() * 4);
