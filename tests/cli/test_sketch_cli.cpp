@@ -172,6 +172,52 @@ print('ok', walking.sum(), standing.sum(), np.degrees(np.median(off)))
   CHECK_THAT(output, Contains("ok"));
 }
 
+TEST_CASE("facing written by sketch goes through transform, edit and collide") {
+  // The sketch's facing and actions carried by the commands that change paths (issue 13): transform turns every
+  // facing by its rotation; edit and collide keep each agent's angle between facing and path where it moves.
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_facing_carried");
+  write_file(dir / "job.yaml", small_job());
+  write_file(dir / "edit.yaml", "drags:\n  - {frames: [0, 0]}\n  - {frames: [end, end], offset: [0, 4]}\n");
+  const auto crowd = dir / "crowd.h5";
+  REQUIRE(run("--quiet sketch " + (dir / "job.yaml").string() + " -o " + crowd.string()) == 0);
+  REQUIRE(run("--quiet transform " + crowd.string() + " --rotate 90 -o " + (dir / "turned.h5").string()) == 0);
+  REQUIRE(run("--quiet edit " + crowd.string() + " --job " + (dir / "edit.yaml").string() + " -o " + (dir / "edited.h5").string()) == 0);
+  REQUIRE(run("--quiet collide " + crowd.string() + " --margin 0.6 --allow-remaining -o " + (dir / "collided.h5").string()) == 0);
+  std::ofstream(dir / "check.py") << R"(import sys, h5py, numpy as np
+def load(path):
+    t = h5py.File(path, 'r')['particles/trajectory']
+    p, q = t['position/value'][:], t['orientation/value'][:]
+    return p, 2 * np.arctan2(q[..., 2], q[..., 3]), t['action/value'][:], t['position/time'][:]
+def wrap(x):
+    return np.angle(np.exp(1j * x))
+def to_path(p, yaw, time):
+    v = (p[2:] - p[:-2]) / (time[2:] - time[:-2])[:, None, None]
+    moving = np.linalg.norm(v[..., :2], axis=2) >= 0.3
+    return wrap(yaw[1:-1] - np.arctan2(v[..., 1], v[..., 0])), moving
+d = sys.argv[1]
+p, yaw, a, time = load(d + '/crowd.h5')
+angle, moving = to_path(p, yaw, time)
+tp, tyaw, ta, _ = load(d + '/turned.h5')
+assert np.abs(wrap(tyaw - yaw - np.pi / 2)).max() < 1e-9
+assert (ta == a).all()
+for name, least_bend in (("edited", 0.1), ("collided", 0.01)):
+    ep, eyaw, ea, etime = load(d + '/' + name + '.h5')
+    eangle, emoving = to_path(ep, eyaw, etime)
+    both = moving & emoving
+    assert both.sum() > 500, (name, both.sum())
+    assert np.abs(wrap(eangle - angle))[both].max() < 1e-6, (name, np.abs(wrap(eangle - angle))[both].max())
+    assert np.abs(wrap(eyaw - yaw)).max() >= least_bend, (name, np.abs(wrap(eyaw - yaw)).max())
+    assert ((ea >= 0) & (ea <= 2)).all()
+print('ok')
+)";
+  std::string output;
+  CHECK(test::run_command(python + " " + (dir / "check.py").string() + " " + dir.string(), &output) == 0);
+  INFO(output);
+  CHECK_THAT(output, Contains("ok"));
+}
+
 TEST_CASE("the sketch configs are the test scenes") {
   for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
                                     std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {
