@@ -75,11 +75,14 @@
 //   from the next one.
 // - Facing and actions (beyond the paper; issue 13). The facing is the simulated walking direction: the walking
 //   velocity u above (the direction filter's, already a low-pass of Eq. 21's direction; with the paper's rule the
-//   step's move), not the sampled positions' difference. Each step, where |u| ≥ facing_standing_speed_m_s the
-//   facing yaw ψ turns toward u's direction by (1 − exp(−Δt/facing_filter_s)) of the difference (shorter arc),
-//   at most facing_turn_rate_rad_s Δt; slower, ψ is kept, so a standing agent — arrived, held in a jam, or
-//   making room — keeps its last facing. At the start ψ points at the agent's first target. Frames between steps
-//   turn ψ along the shorter arc. So ψ turns at most facing_turn_rate_rad_s / output_rate_hz per frame whatever
+//   step's move), not the sampled positions' difference. The facing is a unit vector h in the ground plane. Each step,
+//   where |u| ≥ facing_standing_speed_m_s, h moves toward u's direction û by c = 1 − exp(−Δt/facing_filter_s)
+//   of the difference and is renormalised (a low-pass of the direction: a small difference δ turns h by about
+//   c δ, and a reversal of û is damped most — with c < 1/2 it never flips h), then turns at most
+//   facing_turn_rate_rad_s Δt; slower, h is kept exactly (and so it is within 1e-3 rad of û: no visible turn,
+//   no work for agents walking straight on), so a standing agent — arrived, held in a jam, or
+//   making room — keeps its last facing. At the start h points at the agent's first target. Frames between steps
+//   blend the two steps' facings along the shorter arc (normalised). No trigonometry per agent and step. So ψ turns at most facing_turn_rate_rad_s / output_rate_hz per frame whatever
 //   the avoidance does (10.8° at 25 fps), and step-to-step swings of u are damped by the low-pass. The action is
 //   the speed class, with PathPoseRule's thresholds (the exports' default), of the fastest |u| over the steps
 //   that overlap the interval from the previous output frame (frames need not fall on steps: 24 fps against
