@@ -126,6 +126,98 @@ print('ok')
   CHECK_THAT(output, Contains("ok"));
 }
 
+TEST_CASE("throng sketch on the shipped paper config writes facing and actions that h5py reads") {
+  // The simulation's facing (sketch.h "Facing and actions") in the file: particles/trajectory/orientation and
+  // action beside position, read with h5py: unit quaternions about +z, a standing agent's facing unchanged,
+  // walking agents facing the way they move over the second around the frame, actions walk/stand/run.
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_facing");
+  const auto out = dir / "paper.h5";
+  REQUIRE(run("--quiet sketch " + config("sketch-paper.yaml") + " -o " + out.string()) == 0);
+  std::ofstream(dir / "check.py") << R"(import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], 'r')
+t = f['particles/trajectory']
+p = t['position/value'][:]
+q = t['orientation/value'][:]
+a = t['action/value'][:]
+assert q.shape == p.shape[:2] + (4,), q.shape
+assert a.shape == p.shape[:2], a.shape
+assert list(t['orientation'].attrs['components']) in (['x', 'y', 'z', 'w'], [b'x', b'y', b'z', b'w'])
+names = [n.decode() if isinstance(n, bytes) else n for n in t['action'].attrs['names']]
+assert names[:3] == ['walk', 'stand', 'run'], names
+present = np.isfinite(p[:, :, 0])
+assert np.allclose(np.linalg.norm(q[present], axis=1), 1, atol=1e-9)
+assert np.allclose(q[present][:, :2], 0)
+assert ((a[present] >= 0) & (a[present] <= 2)).all()
+yaw = 2 * np.arctan2(q[..., 2], q[..., 3])
+turn = np.angle(np.exp(1j * (yaw[1:] - yaw[:-1])))
+standing = (a[1:] == 1) & present[1:] & present[:-1]
+assert standing.sum() > 1000, standing.sum()
+assert np.abs(turn[standing]).max() < 1e-9, np.abs(turn[standing]).max()
+rate = float(1 / (f['particles/trajectory/position/time'][1] - f['particles/trajectory/position/time'][0]))
+k = int(round(rate / 2))  # the walking direction: where the agent goes over the second around the frame
+ahead = p[2 * k:] - p[:-2 * k]
+walking = (a[k:-k] == 0) & present[2 * k:] & present[:-2 * k] & (np.linalg.norm(ahead[..., :2], axis=2) > 0.3 * 2 * k / rate)
+heading = np.arctan2(ahead[..., 1], ahead[..., 0])
+off = np.abs(np.angle(np.exp(1j * (yaw[k:-k] - heading))))[walking]
+assert walking.sum() > 10000, walking.sum()
+# Jostled agents in the dense parts turn their facing slowly (by design), hence the percentile, not the maximum.
+assert np.median(off) < np.radians(3) and np.percentile(off, 90) < np.radians(15), (np.median(off), np.percentile(off, 90))
+print('ok', walking.sum(), standing.sum(), np.degrees(np.median(off)))
+)";
+  std::string output;
+  CHECK(test::run_command(python + " " + (dir / "check.py").string() + " " + out.string(), &output) == 0);
+  INFO(output);
+  CHECK_THAT(output, Contains("ok"));
+}
+
+TEST_CASE("facing written by sketch goes through transform, edit and collide") {
+  // The sketch's facing and actions carried by the commands that change paths (issue 13): transform turns every
+  // facing by its rotation; edit and collide keep each agent's angle between facing and path where it moves.
+  const std::string python = test::system_python();
+  REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
+  const auto dir = test::scratch_dir("cli_sketch_facing_carried");
+  write_file(dir / "job.yaml", small_job());
+  write_file(dir / "edit.yaml", "drags:\n  - {frames: [0, 0]}\n  - {frames: [end, end], offset: [0, 4]}\n");
+  const auto crowd = dir / "crowd.h5";
+  REQUIRE(run("--quiet sketch " + (dir / "job.yaml").string() + " -o " + crowd.string()) == 0);
+  REQUIRE(run("--quiet transform " + crowd.string() + " --rotate 90 -o " + (dir / "turned.h5").string()) == 0);
+  REQUIRE(run("--quiet edit " + crowd.string() + " --job " + (dir / "edit.yaml").string() + " -o " + (dir / "edited.h5").string()) == 0);
+  REQUIRE(run("--quiet collide " + crowd.string() + " --margin 0.6 --allow-remaining -o " + (dir / "collided.h5").string()) == 0);
+  std::ofstream(dir / "check.py") << R"(import sys, h5py, numpy as np
+def load(path):
+    t = h5py.File(path, 'r')['particles/trajectory']
+    p, q = t['position/value'][:], t['orientation/value'][:]
+    return p, 2 * np.arctan2(q[..., 2], q[..., 3]), t['action/value'][:], t['position/time'][:]
+def wrap(x):
+    return np.angle(np.exp(1j * x))
+def to_path(p, yaw, time):
+    v = (p[2:] - p[:-2]) / (time[2:] - time[:-2])[:, None, None]
+    moving = np.linalg.norm(v[..., :2], axis=2) >= 0.3
+    return wrap(yaw[1:-1] - np.arctan2(v[..., 1], v[..., 0])), moving
+d = sys.argv[1]
+p, yaw, a, time = load(d + '/crowd.h5')
+angle, moving = to_path(p, yaw, time)
+tp, tyaw, ta, _ = load(d + '/turned.h5')
+assert np.abs(wrap(tyaw - yaw - np.pi / 2)).max() < 1e-9
+assert (ta == a).all()
+for name, least_bend in (("edited", 0.1), ("collided", 0.01)):
+    ep, eyaw, ea, etime = load(d + '/' + name + '.h5')
+    eangle, emoving = to_path(ep, eyaw, etime)
+    both = moving & emoving
+    assert both.sum() > 500, (name, both.sum())
+    assert np.abs(wrap(eangle - angle))[both].max() < 1e-6, (name, np.abs(wrap(eangle - angle))[both].max())
+    assert np.abs(wrap(eyaw - yaw)).max() >= least_bend, (name, np.abs(wrap(eyaw - yaw)).max())
+    assert ((ea >= 0) & (ea <= 2)).all()
+print('ok')
+)";
+  std::string output;
+  CHECK(test::run_command(python + " " + (dir / "check.py").string() + " " + dir.string(), &output) == 0);
+  INFO(output);
+  CHECK_THAT(output, Contains("ok"));
+}
+
 TEST_CASE("the sketch configs are the test scenes") {
   for (const auto& [file, scene] : {std::pair{"sketch-paper.yaml", sketch::scenes::paper_experiment()},
                                     std::pair{"sketch-large.yaml", sketch::scenes::large_crowd()}}) {
@@ -323,7 +415,7 @@ TEST_CASE("job errors found only when the job is run still name the file and lin
     write_file(job, small_job("output_rate: 100000\nduration: 100000\n").replace(small_job().find("duration: 6\n"), 12, ""));
     CHECK(run("--quiet sketch " + job.string() + " -o " + out.string(), &message) == 2);
     CHECK_THAT(message, Contains("job.yaml: up to 10000000001 frames (duration 100000 s × output_rate 100000 Hz) of 8 "
-                                 "agents need about 2.56e+03 GB") &&
+                                 "agents need about 5.76e+03 GB") &&
                             Contains("lower output_rate, duration or agents.count"));
     CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set output_rate=1e5 --set max_duration=1e5 -o " +
                   out.string(),

@@ -29,6 +29,8 @@ TEST_CASE("1 thread and 2 threads give identical positions, bit for bit") {
   const SimulationResult two = run_large(2);
   REQUIRE(one.motion.agent_count() >= 2000);  // several parallel tasks per step
   CHECK(same_bits(one.motion.positions, two.motion.positions));
+  CHECK(same_bits(one.motion.orientations, two.motion.orientations));
+  CHECK(one.motion.actions == two.motion.actions);
   CHECK(same_bits(one.arrival_time_s, two.arrival_time_s));
   CHECK(one.step_count == two.step_count);
   // And the run is not trivially still: the crowd moved (1.4 m/s for 4 s, less where it is dense).

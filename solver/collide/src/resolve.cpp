@@ -6,6 +6,7 @@
 #include <throng/collide/schema.h>
 #include <throng/collide/contact_tracker.h>
 #include <throng/core/errors.h>
+#include <throng/core/facing_carry.h>
 #include <throng/core/format.h>
 #include <throng/core/parallel.h>
 
@@ -142,11 +143,27 @@ class Repair {
     report.output_motion = motion_stats(crowd_);
     result.crowd = crowd_;
     if (report.moved_agents > 0) result.crowd.velocities.clear();
+    // Facing and actions: carried along the repaired paths (throng/core/facing_carry.h; collide.h "Facing").
+    carry_facing_same_frames(input_, result.crowd, changed_agents());
     progress.update(1.0, "collide");
     return result;
   }
 
  private:
+  // The agents whose positions differ from the input's at some frame (on every rank: the whole crowd is here).
+  [[nodiscard]] std::vector<std::size_t> changed_agents() const {
+    std::vector<std::size_t> changed;
+    for (std::size_t a = 0; a < agents_; ++a) {
+      for (std::size_t f = 0; f < frames_; ++f) {
+        if (input_.present(f, a) && input_.position(f, a) != crowd_.position(f, a)) {
+          changed.push_back(a);
+          break;
+        }
+      }
+    }
+    return changed;
+  }
+
   // --- tracks and pins ---
   void make_tracks() {
     std::vector<char> fixed(agents_, 0);

@@ -1,5 +1,7 @@
 #include <throng/edit/output.h>
 
+#include <throng/core/facing_carry.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -55,14 +57,31 @@ CrowdMotion embed_clip(const CrowdMotion& crowd, const CrowdMotion& clip, std::s
   if (!out.velocities.empty()) {
     for (std::size_t a : agents) differentiate(out, a, first_frame, last_frame);
   }
+  // Facing and actions (out holds the input's): carried along the edited paths over the clip's frames.
+  for (std::size_t a : agents) carry_facing(crowd, out, CarriedSpan{a, a, first_frame, last_frame, 0, 0.0});
   return out;
 }
 
-CrowdMotion clip_with_velocities(const CrowdMotion& crowd, CrowdMotion clip) {
+CrowdMotion clip_with_velocities(const CrowdMotion& crowd, CrowdMotion clip, std::size_t first_frame) {
+  const std::vector<std::size_t> agents = crowd_agents(crowd, clip, first_frame);
   clip.velocities.clear();
-  if (crowd.velocities.empty()) return clip;
-  clip.velocities.assign(clip.positions.size(), 0.0);
-  for (std::size_t a = 0; a < clip.agent_count(); ++a) differentiate(clip, a, 0, clip.frame_count() - 1);
+  if (!crowd.velocities.empty()) {
+    clip.velocities.assign(clip.positions.size(), 0.0);
+    for (std::size_t a = 0; a < clip.agent_count(); ++a) differentiate(clip, a, 0, clip.frame_count() - 1);
+  }
+  // Facing and actions: the input's at the clip's frames, carried along the edited paths.
+  clip.orientations.clear();
+  clip.actions.clear();
+  clip.action_table.clear();
+  if (!crowd.orientations.empty()) clip.orientations.assign(clip.frame_count() * clip.agent_count() * 4, absent);
+  if (!crowd.actions.empty()) {
+    clip.actions.assign(clip.frame_count() * clip.agent_count(), -1);
+    clip.action_table = crowd.action_table;
+  }
+  for (std::size_t j = 0; j < agents.size(); ++j) {
+    carry_facing(crowd, clip,
+                 CarriedSpan{agents[j], j, 0, clip.frame_count() - 1, static_cast<std::ptrdiff_t>(first_frame), 0.0});
+  }
   return clip;
 }
 

@@ -65,7 +65,7 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
   out.crowd.scene = input.scene;
   if (job.clip_only) {
     out.crowd.formation_edges = clip_edges(input, r.crowd);
-    out.crowd.motion = clip_with_velocities(input.motion, std::move(out.result.crowd));
+    out.crowd.motion = clip_with_velocities(input.motion, std::move(out.result.crowd), r.first_frame);
     out.result.crowd = CrowdMotion{};
   } else {
     out.crowd.motion = embed_clip(input.motion, r.crowd, r.first_frame);

@@ -24,12 +24,12 @@ void check_memory(const Options& o, double memory) {
   const bool fixed = o.duration_s > 0;
   const double seconds = fixed ? o.duration_s : o.max_duration_s;
   const double frames = std::floor(seconds * o.output_rate_hz) + 1;
-  const double bytes = frames * static_cast<double>(o.agent_count) * 32.0;
+  const double bytes = frames * static_cast<double>(o.agent_count) * 72.0;  // runner.h
   if (memory <= 0 || bytes <= memory) return;
   throw ConfigError("up to " + std::to_string(std::llround(std::min(frames, 1e18))) + " frames (" +
                     (fixed ? "duration " : "max_duration ") + with_digits(seconds, 6) + " s × output_rate " +
                     with_digits(o.output_rate_hz, 6) + " Hz) of " + std::to_string(o.agent_count) + " agents need about " +
-                    with_digits(bytes / 1e9, 3) + " GB of memory (32 bytes per agent and frame), more than this machine's " +
+                    with_digits(bytes / 1e9, 3) + " GB of memory (72 bytes per agent and frame), more than this machine's " +
                     with_digits(memory / 1e9, 3) + " GB; lower output_rate, " +
                     (fixed ? "duration" : "max_duration (or set a duration)") + " or agents.count");
 }

@@ -32,6 +32,9 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
   // Room for every frame up front (with duration 0, up to max_duration's): no reallocation, whose copy would
   // need the old and the new block at once. Pages that no frame reaches are never touched.
   motion.positions.reserve((last_frame + 1) * N * 3);
+  motion.orientations.reserve((last_frame + 1) * N * 4);
+  motion.actions.reserve((last_frame + 1) * N);
+  motion.action_table = standard_actions();
   motion.times.reserve(last_frame + 1);
 
   double finish = sim.finished() ? 0.0 : std::numeric_limits<double>::quiet_NaN();
@@ -53,6 +56,10 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
     motion.times.push_back(time);
     motion.positions.resize(motion.positions.size() + 3 * N);
     sim.sample(time, std::span<double>(motion.positions.data() + m * 3 * N, 3 * N));
+    motion.orientations.resize(motion.orientations.size() + 4 * N);
+    motion.actions.resize(motion.actions.size() + N);
+    sim.take_pose(time, std::span<double>(motion.orientations.data() + m * 4 * N, 4 * N),
+                  std::span<std::int32_t>(motion.actions.data() + m * N, N));
   }
   progress.update(1.0, "simulating crowd");
 

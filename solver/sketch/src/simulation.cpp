@@ -31,12 +31,14 @@ constexpr std::uint8_t walking = static_cast<std::uint8_t>(AgentStatus::walking)
 constexpr std::uint8_t arrived = static_cast<std::uint8_t>(AgentStatus::arrived);
 constexpr std::uint8_t removed = static_cast<std::uint8_t>(AgentStatus::removed);
 
-// The agents' state at one time: positions (metres), walking velocity (m/s, the direction filter's u),
-// target index, status, and the side each agent goes round the obstacle it is sliding along (+1 left, −1 right,
-// 0 none). Structure of arrays.
+// The agents' state at one time: positions (metres), walking velocity (m/s, the direction filter's u; with the
+// paper's rule the step's move over Δt), facing (a unit vector in the ground plane, sketch.h "Facing"), target
+// index, status, and the side each agent goes round the obstacle it is sliding along (+1 left, −1 right, 0 none).
+// Structure of arrays.
 struct State {
   std::vector<double> x, y;
   std::vector<double> ux, uy;
+  std::vector<double> hx, hy;
   std::vector<std::uint32_t> k;
   std::vector<std::uint8_t> status;
   std::vector<std::int8_t> side;
@@ -71,6 +73,47 @@ Eigen::Vector2d coincident_direction(std::uint32_t self, std::uint32_t other) {
   return self < other ? d : Eigen::Vector2d(-d);
 }
 
+// The facing step of sketch.h "Facing and actions", without trigonometry (it runs for every agent and step).
+struct FacingStep {
+  double follow;          // 1 − exp(−Δt/τ_facing)
+  double cos_turn, sin_turn;  // of the largest turn per step, facing_turn_rate_rad_s Δt
+
+  // The facing h (unit) after a step with walking velocity u: slower than facing_standing_speed_m_s, h itself
+  // (exactly); else h moved toward u's direction by `follow` of the difference and renormalised, turned by at
+  // most the largest turn (then exactly that far, toward the side it was going).
+  // Within 1e-3 rad (0.06°) of û, h is kept too: invisible, and it spares the square roots for the agents that
+  // walk straight on (without this the step costs a third more, bench/sketch BM_Step).
+  [[nodiscard]] Eigen::Vector2d next(const Eigen::Vector2d& h, const Eigen::Vector2d& u) const {
+    const double speed2 = u.squaredNorm();
+    if (speed2 < facing_standing_speed_m_s * facing_standing_speed_m_s) return h;
+    const double along = h.dot(u), across = h.x() * u.y() - h.y() * u.x();
+    if (along > 0 && across * across <= 1e-6 * speed2) return h;
+    const Eigen::Vector2d g = (h + follow * (u / std::sqrt(speed2) - h)).normalized();  // |g| ≥ 1 − 2 follow > 0
+    if (h.dot(g) >= cos_turn) return g;
+    const double side = h.x() * g.y() - h.y() * g.x() >= 0 ? 1.0 : -1.0;
+    return Eigen::Vector2d(h.x() * cos_turn - side * h.y() * sin_turn, side * h.x() * sin_turn + h.y() * cos_turn).normalized();
+  }
+};
+
+// The quaternion (x, y, z, w) of the yaw about +z that turns +x onto the ground direction (dx, dy) ≠ 0: facing_along's
+// half-angle formula (no trigonometry), with a plain square root for the length (std::hypot costs more than the
+// rest of the frame's work per agent).
+void yaw_quaternion(double dx, double dy, double* q) {
+  const double length = std::sqrt(dx * dx + dy * dy);
+  const double c = dx / length, s = dy / length;
+  q[0] = q[1] = 0.0;
+  if (c >= 0) {
+    const double norm = std::sqrt(2.0 * (1.0 + c));
+    q[2] = s / norm;
+    q[3] = (1.0 + c) / norm;
+  } else {  // near a half turn: from u − x̂, which keeps its digits there
+    const double norm = std::sqrt(2.0 * (1.0 - c));
+    const double sign = s < 0 ? -1.0 : 1.0;
+    q[2] = sign * (1.0 - c) / norm;
+    q[3] = sign * s / norm;
+  }
+}
+
 }  // namespace
 
 struct Simulation::Impl {
@@ -92,6 +135,7 @@ struct Simulation::Impl {
   int current = 0;
   std::vector<double> arrival;        // N, seconds or NaN
   std::vector<std::uint8_t> in_grid;  // N, status != removed
+  std::vector<double> fastest;        // N: fastest |u|² over the steps since the last take_pose (m²/s²)
   detail::NeighbourGrid grid;
   detail::ObstacleField obstacles;
   std::size_t steps = 0;
@@ -219,10 +263,13 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   s0.y.resize(N);
   s0.ux.assign(N, 0.0);
   s0.uy.assign(N, 0.0);
+  s0.hx.assign(N, 1.0);
+  s0.hy.assign(N, 0.0);
   s0.k.resize(N);
   s0.status.assign(N, walking);
   s0.side.assign(N, 0);
   arrival.assign(N, std::numeric_limits<double>::quiet_NaN());
+  fastest.assign(N, 0.0);
   in_grid.assign(N, 1);
   for (std::size_t j = 0; j < N; ++j) {
     s0.x[j] = agents.start[j].x();
@@ -257,6 +304,12 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
       s0.status[j] = arrived;
       arrival[j] = 0.0;
     }
+    // The first facing: toward the first target (where the agent is about to walk), along the course at it.
+    const Eigen::Vector2d ahead = target(j, s0.k[j]) - p;
+    const Eigen::Vector2d facing =
+        ahead.squaredNorm() > 1e-18 ? ahead.normalized() : Eigen::Vector2d(tangent_x[s0.k[j]], tangent_y[s0.k[j]]);
+    s0.hx[j] = facing.x();
+    s0.hy[j] = facing.y();
   }
   summarise();
   states[1] = s0;
@@ -378,6 +431,8 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
     const double n = change.norm();
     return largest_change > 0 && n > largest_change ? Eigen::Vector2d(change * (largest_change / n)) : change;
   };
+  const FacingStep facing{-std::expm1(-dt / facing_filter_s), std::cos(facing_turn_rate_rad_s * dt),
+                          std::sin(facing_turn_rate_rad_s * dt)};
   const bool remove_at_end = options.end_of_path == EndOfPath::remove;
   const bool has_obstacles = !obstacles.empty();
   // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
@@ -422,7 +477,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
         q = p + dt * (before + bounded(relax * (wanted - before)));
       }
       if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
-      if (filtered) u = (q - p) / dt;
+      u = (q - p) / dt;  // filtered: the walking velocity; the paper's rule: the step's move (for the facing)
       // Target advancement (after the move, as in the paper; plus "passed", see sketch.h).
       // With EndOfPath::stop, an agent also stops on reaching the crowd standing at the end (see sketch.h).
       bool joins = false;
@@ -453,13 +508,17 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
           q = p + dt * (before + bounded(relax * (room / dt - before)));
         }
         if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
-        if (filtered) u = (q - p) / dt;
+        u = (q - p) / dt;
       }
     }
     next.x[j] = q.x();
     next.y[j] = q.y();
     next.ux[j] = u.x();
     next.uy[j] = u.y();
+    const Eigen::Vector2d h = facing.next(Eigen::Vector2d(s.hx[j], s.hy[j]), u);
+    next.hx[j] = h.x();
+    next.hy[j] = h.y();
+    fastest[j] = std::max(fastest[j], u.squaredNorm());  // agent j's own entry: no other task writes it
     next.k[j] = k;
     next.status[j] = status;
     next.side[j] = side;
@@ -555,6 +614,51 @@ void Simulation::sample(double time, std::span<double> frame) const {
       }
     }
   });
+}
+
+}  // namespace throng::sketch
+
+namespace throng::sketch {
+
+void Simulation::take_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions) {
+  Impl& m = *impl_;
+  assert(orientations.size() == 4 * m.N && actions.size() == m.N);
+  const State& a = m.previous();
+  const State& b = m.now();
+  const double t1 = this->time();
+  const double alpha =
+      m.steps == 0 ? 1.0 : std::clamp((time - (t1 - m.options.time_step_s)) / m.options.time_step_s, 0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto pose = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      double* q = orientations.data() + 4 * j;
+      const bool present = b.status[j] != removed || (alpha == 0.0 && a.status[j] != removed);
+      if (!present) {
+        q[0] = q[1] = q[2] = q[3] = nan;
+        actions[j] = -1;
+        m.fastest[j] = 0.0;
+        continue;
+      }
+      // Between the step's facings (at most the largest turn apart) along the shorter arc, as the normalised
+      // blend; the same facing at both ends is kept exactly.
+      const bool same = a.hx[j] == b.hx[j] && a.hy[j] == b.hy[j];
+      const double dx = same ? b.hx[j] : (1 - alpha) * a.hx[j] + alpha * b.hx[j];
+      const double dy = same ? b.hy[j] : (1 - alpha) * a.hy[j] + alpha * b.hy[j];
+      yaw_quaternion(dx, dy, q);
+      // The fastest walking speed over the steps since the previous frame taken (sketch.h "Facing and actions");
+      // the next frame's interval starts within the current step, so its speed starts the next maximum.
+      const double speed2 = m.fastest[j];
+      const double stand2 = facing_standing_speed_m_s * facing_standing_speed_m_s, run2 = running_speed_m_s * running_speed_m_s;
+      actions[j] = speed2 < stand2 ? action_stand : speed2 >= run2 ? action_run : action_walk;
+      m.fastest[j] = b.ux[j] * b.ux[j] + b.uy[j] * b.uy[j];
+    }
+  };
+  // One task's worth is done here: a small crowd's frames would otherwise pay a parallel launch each.
+  if (m.N <= 4096) {
+    pose(0, m.N);
+  } else {
+    parallel_for(m.N, 4096, pose);
+  }
 }
 
 }  // namespace throng::sketch

@@ -2,6 +2,7 @@
 #include "window.h"
 
 #include <throng/core/errors.h>
+#include <throng/core/facing_carry.h>
 #include <throng/core/parallel.h>
 #include <throng/linalg/spd_solver.h>
 #include <throng/stitch/schema.h>
@@ -14,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace throng::stitch {
@@ -47,6 +49,39 @@ Feature averaged(const Feature& a, const Feature& b) {
   f.offset = 0.5 * (a.offset + b.offset);
   f.weight = 0.5 * (a.weight + b.weight);
   return f;
+}
+
+// Facing and actions of the stitched clip (stitch.h "Facing"): frames 0..J from G's agents, J + 1.. from the
+// matched agents of G′ turned by the alignment's `rotation`, both carried along the stitched paths. A clip without
+// them while the other has them contributes the path's default. Nothing when neither clip has any.
+void carry_clip_pose(const CrowdMotion& first, const CrowdMotion& second, CrowdMotion& out, const std::vector<std::size_t>& first_agents,
+                     const std::vector<std::size_t>& partner, std::size_t J, double rotation) {
+  const bool facing = !first.orientations.empty() || !second.orientations.empty();
+  const bool acting = !first.actions.empty() || !second.actions.empty();
+  if (!facing && !acting) return;
+  std::optional<CrowdMotion> derived_first, derived_second;
+  auto complete = [&](const CrowdMotion& clip, std::optional<CrowdMotion>& derived) -> const CrowdMotion& {
+    if ((facing && clip.orientations.empty()) || (acting && clip.actions.empty())) {
+      derived = clip;
+      derive_path_pose(*derived);
+      return *derived;
+    }
+    return clip;
+  };
+  const CrowdMotion& a = complete(first, derived_first);
+  const CrowdMotion& b = complete(second, derived_second);
+  const std::size_t T = out.frame_count(), n = out.agent_count();
+  if (facing) out.orientations.assign(T * n * 4, absent);
+  std::vector<std::int32_t> second_actions;
+  if (acting) {
+    out.actions.assign(T * n, -1);
+    out.action_table = a.action_table;
+    second_actions = merge_action_tables(b.action_table, out.action_table);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    carry_facing(a, out, CarriedSpan{first_agents[j], j, 0, J, 0, 0.0, nullptr});
+    carry_facing(b, out, CarriedSpan{partner[j], j, J + 1, T - 1, -static_cast<std::ptrdiff_t>(J), rotation, &second_actions});
+  }
 }
 
 }  // namespace
@@ -321,6 +356,7 @@ Result stitch_clips(const CrowdMotion& first, const CrowdMotion& second, const O
       }
     }
   });
+  carry_clip_pose(first, second, out, pa.agents, partner, J, report.rotation);
   // Plausibility: the guard, with the clips themselves as the source (stitch.h "Plausibility").
   report_to.update(0.95, "guarding speed and acceleration");
   timewarp::Source source;

@@ -1,12 +1,16 @@
 #include "text.h"
 
 #include <throng/core/errors.h>
+#include <throng/core/facing_carry.h>
 #include <throng/stitch/transform.h>
 #include <throng/timewarp/resample.h>
 
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
 #include <numbers>
 #include <string>
 
@@ -68,6 +72,10 @@ void transform(CrowdMotion& crowd, Scene& scene, const TransformOptions& o) {
   const Eigen::Matrix2d R = motion.linear();
   const double t0 = crowd.times.empty() ? 0.0 : crowd.times.front();
   auto retime = [&](double t) { return t0 + o.time_scale * (t - t0) + o.time_shift; };
+  // Actions follow the new speeds where a retiming moves an agent into another walk/stand/run class
+  // (facing_carry.h); that needs the crowd as it was, kept only when it can happen.
+  std::optional<CrowdMotion> before;
+  if (!crowd.actions.empty() && o.time_scale != 1.0) before = crowd;
 
   for (std::size_t f = 0; f < crowd.frame_count(); ++f) {
     crowd.times[f] = retime(crowd.times[f]);
@@ -81,6 +89,24 @@ void transform(CrowdMotion& crowd, Scene& scene, const TransformOptions& o) {
         v /= o.time_scale;
       }
     }
+  }
+  // Facing turns with the crowd: every orientation by the rotation about +z (exactly; absent ones stay NaN).
+  if (!crowd.orientations.empty()) {
+    const Eigen::Quaterniond turn(Eigen::AngleAxisd(o.rotation, Eigen::Vector3d::UnitZ()));
+    for (std::size_t f = 0; f < crowd.frame_count(); ++f) {
+      for (std::size_t a = 0; a < crowd.agent_count(); ++a) {
+        if (crowd.present(f, a)) crowd.orientation(f, a) = (turn * Eigen::Quaterniond(crowd.orientation(f, a))).normalized();
+      }
+    }
+  }
+  if (before && crowd.frame_count() > 0) {
+    // Actions only: with the orientations set aside carry_facing leaves the facing (turned exactly above) alone.
+    std::vector<double> facing = std::move(crowd.orientations);
+    crowd.orientations.clear();
+    for (std::size_t a = 0; a < crowd.agent_count(); ++a) {
+      carry_facing(*before, crowd, CarriedSpan{a, a, 0, crowd.frame_count() - 1, 0, 0.0});
+    }
+    crowd.orientations = std::move(facing);
   }
   for (auto& id : crowd.ids) id += o.id_offset;
   if (o.species) std::fill(crowd.species.begin(), crowd.species.end(), *o.species);

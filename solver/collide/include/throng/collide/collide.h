@@ -206,7 +206,11 @@ struct Report {
 };
 
 struct Result {
-  CrowdMotion crowd;  ///< the repaired crowd: same frames, agents, ids, radii, species; velocities dropped if anything moved
+  /// The repaired crowd: same frames, agents, ids, radii, species; velocities dropped if anything moved. Facing
+  /// and actions (when the input has them; none when it has none): a repaired agent keeps its facing at the same
+  /// angle to its path as in the input, and a walk/stand/run action follows its new speed where that changed
+  /// class (throng/core/facing_carry.h); agents not moved keep the input's bit for bit.
+  CrowdMotion crowd;
   Report report;
 };
 

@@ -33,8 +33,9 @@ struct Run {
 };
 
 /// Refuses (ConfigError naming the keys to change) a run whose frames cannot fit in `memory_bytes`: all frames
-/// are held until the file is written (positions, 24 B per agent and frame, then the file's per-frame ids, 8 B
-/// more), so a run that does not fit would otherwise end in an allocation failure after the whole simulation.
+/// are held until the file is written (per agent and frame: position 24 B, facing 32 B, action 4 B, then the
+/// file's per-frame ids 8 B more: 72 B), so a run that does not fit would otherwise end in an allocation failure
+/// after the whole simulation.
 /// With duration 0 the bound is max_duration's frame count. memory_bytes 0: unknown, no check.
 void check_memory(const Options& options, double memory_bytes);
 

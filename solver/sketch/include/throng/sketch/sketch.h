@@ -73,6 +73,22 @@
 //   agents (Eq. 16 terms) and obstacles (Eq. 18 terms), at most v Δt, so a standing crowd settles without the
 //   jitter of Eq. 21's constant step. `remove` — the agent is present at the step it arrives and absent (NaN)
 //   from the next one.
+// - Facing and actions (beyond the paper; issue 13). The facing is the simulated walking direction: the walking
+//   velocity u above (the direction filter's, already a low-pass of Eq. 21's direction; with the paper's rule the
+//   step's move), not the sampled positions' difference. The facing is a unit vector h in the ground plane. Each step,
+//   where |u| ≥ facing_standing_speed_m_s, h moves toward u's direction û by c = 1 − exp(−Δt/facing_filter_s)
+//   of the difference and is renormalised (a low-pass of the direction: a small difference δ turns h by about
+//   c δ, and a reversal of û is damped most — with c < 1/2 it never flips h), then turns at most
+//   facing_turn_rate_rad_s Δt; slower, h is kept exactly (and so it is within 1e-3 rad of û: no visible turn,
+//   no work for agents walking straight on), so a standing agent — arrived, held in a jam, or
+//   making room — keeps its last facing. At the start h points at the agent's first target. Frames between steps
+//   blend the two steps' facings along the shorter arc (normalised). No trigonometry per agent and step. So ψ turns at most facing_turn_rate_rad_s / output_rate_hz per frame whatever
+//   the avoidance does (10.8° at 25 fps), and step-to-step swings of u are damped by the low-pass. The action is
+//   the speed class, with PathPoseRule's thresholds (the exports' default), of the fastest |u| over the steps
+//   that overlap the interval from the previous output frame (frames need not fall on steps: 24 fps against
+//   Δt = 0.04 s): stand below facing_standing_speed_m_s — the same test as the kept facing, so a frame that says
+//   stand has exactly the previous frame's facing —, run from running_speed_m_s, walk between; u is filtered, so
+//   the class does not flicker with the avoidance either. The table is standard_actions().
 // - Determinism: every agent reads only the previous state (two buffers); neighbour sums run in a fixed order
 //   (grid cells, then agent index); random draws come from per-agent streams. Same bits for any thread count.
 #pragma once
@@ -85,11 +101,25 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace throng::sketch {
+
+/// Facing (see the header comment). Below this walking speed (m/s) an agent stands: it keeps its facing and its
+/// action is stand. PathPoseRule's standing speed, the exports' default rule, so both agree on who stands.
+inline constexpr double facing_standing_speed_m_s = PathPoseRule{}.standing_speed;
+/// From this walking speed (m/s) on the action is run (PathPoseRule's running speed: the walk–run transition).
+inline constexpr double running_speed_m_s = PathPoseRule{}.running_speed;
+/// τ (s) of the facing's low-pass toward the walking direction: short against the walking velocity's own τ
+/// (direction_filter_s, 0.5 s) so that the facing lags a turn by little, long against Δt so that a swing of u
+/// over a step or two (avoidance with the paper's rule) moves the facing by a fraction of it (0.18 at Δt = 0.04 s).
+inline constexpr double facing_filter_s = 0.2;
+/// Fastest turn of the facing (rad/s): 270°/s, an about-turn in 2/3 s, a brisk turn on the spot and below the
+/// checker's plausibility limit (throng/check, 360°/s); bounds the facing's change per frame whatever the forces do.
+inline constexpr double facing_turn_rate_rad_s = 1.5 * std::numbers::pi;
 
 /// A drawn stroke: a polyline in the ground plane and the time each point was drawn.
 ///   points  #points, metres
@@ -281,6 +311,12 @@ class Simulation {
   /// at step times; a frame between steps lies on the straight move, which can cut a convex corner of the grown
   /// obstacle by at most (v Δt)² / (8 agent_radius_m) (1.6 mm at 1.4 m/s, Δt = 0.04 s, 0.25 m).
   void sample(double time, std::span<double> frame) const;
+  /// Facing and action of an output frame at `time` (same range as sample()), frames taken in time order:
+  /// `orientations` #agents by 4 (x, y, z, w), the yaw about +z interpolated along the shorter arc between the
+  /// steps; `actions` #agents, standard_actions() indices from the fastest walking speed over the steps since
+  /// the previous frame taken (the step holding that frame included; see the header comment). NaN and −1 where
+  /// the agent is absent. Not const: it starts the next frame's speed maximum.
+  void take_pose(double time, std::span<double> orientations, std::span<std::int32_t> actions);
 
   [[nodiscard]] const Course& course() const noexcept;
   [[nodiscard]] const AgentParameters& agents() const noexcept;
@@ -291,7 +327,8 @@ class Simulation {
 };
 
 /// What simulate() returns.
-///   motion          frames at Options::output_rate_hz from time 0; ids 0..N−1, radii agent_radius_m, species 0
+///   motion          frames at Options::output_rate_hz from time 0; ids 0..N−1, radii agent_radius_m, species 0;
+///                   orientations and actions (standard_actions() table) from the simulation (see "Facing")
 ///   course, agents  the parameters the strokes gave (for inspection, pictures and the output file)
 ///   arrival_time_s  #agents, when each agent reached its path's end (NaN: it did not within the duration)
 struct SimulationResult {

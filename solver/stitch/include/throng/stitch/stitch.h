@@ -57,6 +57,12 @@
 //    (throng/timewarp/spline.h), since the displacement has no reason to stop curving at the window's ends.
 //  * Times: G's, then G′'s shifted so that its first frame falls on G's last (frame rates may differ; a time warp
 //    or transform resamples afterwards). z is kept from the inputs. Velocities are dropped.
+//  * Facing and actions (when either clip has them; none when neither has): frames up to the joint carry G's, the
+//    frames after it the matched agent's of G′ turned by the alignment's rotation, each kept at the same angle to
+//    its stitched path as in its clip (throng/core/facing_carry.h: turned by the change of the path tangent's
+//    yaw, standing frames by the nearest moving frame's turn). A walk/stand/run action follows the stitched speed
+//    where the blend moved it into another class; other actions pass through (G′'s table entries are appended
+//    to G's). A clip without facing joined to one with it contributes the path's default (PathFacing).
 //  * At the joint, if G (or G′) has fewer than 3 samples it has no temporal feature next to the joint and the other
 //    side's is used; with neither, Ḡ's own.
 //

@@ -3,7 +3,9 @@
 // new ids or species for duplicates. The scene moves with the crowd.
 //
 // Order: positions p ↦ pivot + R(rotation) (p − pivot) + translation (z kept); times t ↦ t0 + time_scale (t − t0)
-// + time_shift, t0 the crowd's first time; velocities rotate and divide by time_scale. Obstacles: static shapes
+// + time_shift, t0 the crowd's first time; velocities rotate and divide by time_scale; orientations (facing) turn
+// by the rotation about +z; actions stay, except that a walk/stand/run action follows the new speed where a
+// time_scale moves it into another class (throng/core/facing_carry.h). Obstacles: static shapes
 // are moved like positions; moving obstacles get the same rigid motion composed with their poses, and retimed
 // keys; a new frame rate resamples last. A region becomes the bounding box of its moved corners, keeping its periodic flags only when the rotation
 // is a multiple of 90° (swapped for odd multiples); its time span is retimed.
