@@ -108,6 +108,25 @@ void carry_facing(const CrowdMotion& before, CrowdMotion& after, const CarriedSp
     if (!before.present(*s, b) || !std::isfinite(q.w()) || q.norm() == 0.0) continue;
     after.orientation(f, a) = turned_by_yaw(q, yaw);
   }
+  // From the frame before the span (a clip's seam) on: no faster than a person turns.
+  limit_facing_rate(after, a, span.first > 0 ? span.first - 1 : 0, span.first + L - 1, carried_max_turn_rate);
+}
+
+void limit_facing_rate(CrowdMotion& motion, std::size_t agent, std::size_t first, std::size_t last, double max_rate) {
+  if (motion.orientations.empty()) return;
+  last = std::min(last, motion.frame_count() - 1);
+  for (std::size_t f = first + 1; f <= last && f > first; ++f) {
+    if (!motion.present(f, agent) || !motion.present(f - 1, agent)) continue;
+    const Eigen::Quaterniond from = motion.orientation(f - 1, agent), to = motion.orientation(f, agent);
+    const double turn = from.angularDistance(to);
+    const double allowed = max_rate * (motion.times[f] - motion.times[f - 1]);
+    if (turn > allowed) motion.orientation(f, agent) = from.slerp(allowed / turn, to).normalized();
+  }
+}
+
+void limit_facing_rate(CrowdMotion& motion, double max_rate) {
+  if (motion.orientations.empty() || motion.frame_count() == 0) return;
+  for (std::size_t n = 0; n < motion.agent_count(); ++n) limit_facing_rate(motion, n, 0, motion.frame_count() - 1, max_rate);
 }
 
 void derive_path_pose(CrowdMotion& m, const PathPoseRule& rule) {

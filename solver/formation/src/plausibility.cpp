@@ -39,8 +39,7 @@ double keyframe_speed(const CrowdMotion& motion, const std::vector<std::size_t>&
 
 void guard_formation(Problem& problem, Result& result, const Options& options, Progress& progress) {
   if (!options.guard.enabled) return;
-  timewarp::GuardReport& report = result.guard;
-  report = {};
+  timewarp::GuardReport report;  // result.guard at the end (remaking the formation resets result)
   const std::size_t K = problem.keyframes.size();
   const double stated = options.max_speed_mps > 0 ? options.max_speed_mps : keyframe_speed(result.motion, result.keyframe_frames);
   report.speed_limit = options.guard.max_speed_ratio * stated;
@@ -91,6 +90,7 @@ void guard_formation(Problem& problem, Result& result, const Options& options, P
   report.max_acceleration_before = smoothed.report.max_acceleration_before;
   report.max_acceleration_after = smoothed.report.max_acceleration_after;
   report.max_speed_after = fastest_speed(result.motion, result.keyframe_frames);
+  result.guard = report;
 }
 
 }  // namespace throng::formation

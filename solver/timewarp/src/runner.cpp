@@ -1,3 +1,4 @@
+#include <throng/core/facing_carry.h>
 #include <throng/timewarp/runner.h>
 #include <throng/timewarp/schema.h>
 
@@ -48,6 +49,8 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
   progress.update(1.0, "timewarp: done");
   Run out;
   out.crowd.motion = std::move(guarded.crowd);
+  // Where the warp shortened intervals, carried facings turn faster in the new time: no faster than a person.
+  limit_facing_rate(out.crowd.motion, carried_max_turn_rate);
   out.guard = guarded.report;
   out.crowd.scene = deformed.scene;
   out.warp = std::move(result.warp);

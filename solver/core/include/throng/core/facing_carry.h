@@ -24,6 +24,18 @@
 
 namespace throng {
 
+/// How fast a carried facing may turn (rad/s): 270°/s, a brisk turn on the spot (sketch's own limit, below the
+/// checker's default of 360°/s). A deformation that bends a path sharply, or a stitch that hands an agent from one
+/// clip's facing to another's at the seam, turns the facing at most this fast (limit_facing_rate).
+inline constexpr double carried_max_turn_rate = 1.5 * 3.14159265358979323846;
+
+/// Turns agent `agent`'s facing at frames first+1..last (where it and the frame before are present) toward its
+/// current value by at most max_rate × the frame interval from the frame before (slerp along the shorter arc),
+/// in order, so the facing never turns faster than max_rate (rad/s > 0). Nothing without orientations.
+void limit_facing_rate(CrowdMotion& motion, std::size_t agent, std::size_t first, std::size_t last, double max_rate);
+/// The same for every agent over every frame.
+void limit_facing_rate(CrowdMotion& motion, double max_rate);
+
 /// The quaternion of a turn by `yaw` radians about +z applied to `q` (world frame): R_z(yaw) q, normalised.
 [[nodiscard]] Eigen::Quaterniond turned_by_yaw(const Eigen::Quaterniond& q, double yaw);
 
@@ -44,7 +56,8 @@ struct CarriedSpan {
   const std::vector<std::int32_t>* action_map = nullptr;
 };
 
-/// Writes `after`'s orientations and actions over the span from `before`'s by the rule above. `before` must have
+/// Writes `after`'s orientations and actions over the span from `before`'s by the rule above, then limits the
+/// facing's turn rate to carried_max_turn_rate from the frame before the span to its end. `before` must have
 /// orientations (else nothing is written); `after` must already hold orientations and actions of its size (and,
 /// for actions, `before`'s action table: entries may be appended). Frames where the agent is absent in `after`
 /// are left as they are.
