@@ -174,7 +174,8 @@ print('ok', walking.sum(), standing.sum(), np.degrees(np.median(off)))
 
 TEST_CASE("facing written by sketch goes through transform, edit and collide") {
   // The sketch's facing and actions carried by the commands that change paths (issue 13): transform turns every
-  // facing by its rotation; edit and collide keep each agent's angle between facing and path where it moves.
+  // facing by its rotation; edit and collide keep each agent's angle between facing and path where it moves, at
+  // most 270°/s (carried_max_turn_rate).
   const std::string python = test::system_python();
   REQUIRE_FALSE(python.empty());  // python3-h5py, installed by scripts/install-deps
   const auto dir = test::scratch_dir("cli_sketch_facing_carried");
@@ -207,7 +208,12 @@ for name, least_bend in (("edited", 0.1), ("collided", 0.01)):
     eangle, emoving = to_path(ep, eyaw, etime)
     both = moving & emoving
     assert both.sum() > 500, (name, both.sum())
-    assert np.abs(wrap(eangle - angle))[both].max() < 1e-6, (name, np.abs(wrap(eangle - angle))[both].max())
+    # The angle to the path is kept where the carried turn is no faster than a person turns (270 deg/s); where
+    # the path's direction swings faster the facing follows at that rate and catches up.
+    kept = np.abs(wrap(eangle - angle))[both] < 1e-6
+    assert kept.mean() > 0.9, (name, kept.mean())
+    rate = np.abs(wrap(eyaw[1:] - eyaw[:-1])) / np.diff(etime)[:, None]
+    assert rate.max() <= 1.5 * np.pi * (1 + 1e-6), (name, rate.max())
     assert np.abs(wrap(eyaw - yaw)).max() >= least_bend, (name, np.abs(wrap(eyaw - yaw)).max())
     assert ((ea >= 0) & (ea <= 2)).all()
 print('ok')

@@ -64,9 +64,28 @@ TEST_CASE("timewarp slows a crowd that was pushed ahead, warns when the clamp ac
   write_crowd_file(dir / "walk.h5", original);
   write_crowd_file(dir / "pushed.h5", pushed);
   std::string out;
+  // Eq. 12's warp alone (the guard off): the clamp holds the jump's interval at 5×.
   REQUIRE(run("--json timewarp " + s(dir / "pushed.h5") + " --reference " + s(dir / "walk.h5") +
-              " --max-interval-ratio 5 --output-rate 20 -o " + s(dir / "out.h5") + " 2>&1", &out) == 0);
+              " --max-interval-ratio 5 --output-rate 20 --set guard.enabled=false -o " + s(dir / "out.h5") + " 2>&1", &out) == 0);
   CHECK_THAT(out, Contains("clamp acts on 1 of 80"));
+  {
+    // With the guard (the default) the jump the clamp left is slowed further, to 1.25 × the walk's speed.
+    std::string guarded;
+    REQUIRE(run("--json timewarp " + s(dir / "pushed.h5") + " --reference " + s(dir / "walk.h5") +
+                " --max-interval-ratio 5 --output-rate 20 -o " + s(dir / "guarded.h5") + " 2>&1", &guarded) == 0);
+    CHECK_THAT(guarded, Contains("\"guard_warped\": true"));
+    const CrowdMotion& m = read_crowd_file(dir / "guarded.h5").motion;
+    const CrowdMotion& w = original.motion;
+    double fastest = 0, reference = 0;
+    for (std::size_t f = 1; f < m.frame_count(); ++f)
+      for (std::size_t a = 0; a < m.agent_count(); ++a)
+        fastest = std::max(fastest, (m.position(f, a) - m.position(f - 1, a)).norm() / (m.times[f] - m.times[f - 1]));
+    for (std::size_t f = 1; f < w.frame_count(); ++f)
+      for (std::size_t a = 0; a < w.agent_count(); ++a)
+        reference = std::max(reference, (w.position(f, a) - w.position(f - 1, a)).norm() / (w.times[f] - w.times[f - 1]));
+    CHECK(fastest <= 1.25 * reference * 1.02);
+    CHECK(m.times.back() > 8.4);
+  }
   const CrowdFile warped = read_crowd_file(dir / "out.h5");
   CHECK(warped.motion.times[1] - warped.motion.times[0] == Approx(0.05).epsilon(1e-9));
   CHECK(warped.motion.times.back() == Approx(8.4).margin(0.05 + 1e-9));  // 8 s + 4 × 0.1 s for the clamped interval

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "facing_angles.h"
@@ -13,6 +14,9 @@ using namespace throng;
 using Catch::Matchers::WithinAbs;
 
 namespace {
+
+// No turn-rate limit: the carrying rule exactly (the limit has its own test below).
+constexpr double exact = std::numeric_limits<double>::infinity();
 
 constexpr double pi = std::numbers::pi;
 
@@ -48,7 +52,7 @@ TEST_CASE("a path bent by 90° turns a sideways facing by 90°, standing frames 
     const double along = before.position(f, 0).x() - before.position(18, 0).x();
     after.position(f, 0) << before.position(18, 0).x(), along, 0;
   }
-  carry_facing_same_frames(before, after, {0});
+  carry_facing_same_frames(before, after, {0}, {}, exact);  // the rule alone, not limited
   for (std::size_t f = 0; f < 30; ++f) {
     INFO("frame " << f);
     // Frames 10..18 stand: 10..14 take the first walk's turn (0; 14 is a tie, the earlier wins), 15..18 the
@@ -84,7 +88,7 @@ TEST_CASE("walk/stand/run follow the new speed where it changed class, other act
   // Three times as far per frame in the first walk (3 m/s: run); the second walk is unchanged.
   for (std::size_t f = 0; f < 30; ++f) after.position(f, 0).x() *= f < 10 ? 3.0 : 1.0;
   for (std::size_t f = 10; f < 30; ++f) after.position(f, 0).x() += 2 * 0.9;
-  carry_facing_same_frames(before, after, {0});
+  carry_facing_same_frames(before, after, {0}, {}, exact);  // the rule alone, not limited
   CHECK(after.action_table.size() == 4);  // run was in the standard table already
   for (std::size_t f = 1; f < 8; ++f) CHECK(after.action(f, 0) == action_run);
   for (std::size_t f = 11; f < 18; ++f) CHECK(after.action(f, 0) == action_stand);
@@ -108,10 +112,34 @@ TEST_CASE("a span with a frame offset, a rigid rotation and an action map") {
   after.action_table = {{"stand", ""}, {"walk", ""}, {"run", ""}};
   const std::vector<std::int32_t> map = merge_action_tables(before.action_table, after.action_table);
   CHECK(map == std::vector<std::int32_t>{1, 0, 2});
-  carry_facing(before, after, CarriedSpan{0, 0, 10, 39, -10, pi / 2, &map});
+  carry_facing(before, after, CarriedSpan{0, 0, 10, 39, -10, pi / 2, &map, exact});
   for (std::size_t f = 10; f < 40; ++f) {
     CHECK_THAT(test::wrapped(test::facing_yaw(after, f, 0) - pi), WithinAbs(0, 1e-9));  // north turned by 90°
     CHECK(after.action_table[static_cast<std::size_t>(after.action(f, 0))] ==
           before.action_table[static_cast<std::size_t>(before.action(f - 10, 0))]);
   }
+}
+
+TEST_CASE("carried facings turn at most carried_max_turn_rate: a 90° bend in one frame is turned over a third of a second") {
+  CrowdMotion before = walk_stand_walk();
+  test::face_at_angle_to_path(before, pi / 2);
+  CrowdMotion after = before;
+  for (std::size_t f = 19; f < 30; ++f) {
+    const double along = before.position(f, 0).x() - before.position(18, 0).x();
+    after.position(f, 0) << before.position(18, 0).x(), along, 0;
+  }
+  CrowdMotion exact_after = after;
+  carry_facing_same_frames(before, exact_after, {0}, {}, exact);
+  carry_facing_same_frames(before, after, {0});
+  double largest = 0, exact_largest = 0;
+  for (std::size_t f = 1; f < 30; ++f) {
+    const double dt = after.times[f] - after.times[f - 1];
+    largest = std::max(largest, after.orientation(f - 1, 0).angularDistance(after.orientation(f, 0)) / dt);
+    exact_largest = std::max(exact_largest, exact_after.orientation(f - 1, 0).angularDistance(exact_after.orientation(f, 0)) / dt);
+  }
+  CHECK(exact_largest > 2 * carried_max_turn_rate);  // the rule alone turns faster than a person
+  CHECK(largest <= carried_max_turn_rate * (1 + 1e-9));
+  CHECK(largest > 0.99 * carried_max_turn_rate);
+  // It catches up: the last frame faces as the rule says.
+  CHECK(after.orientation(29, 0).angularDistance(exact_after.orientation(29, 0)) < 1e-9);
 }

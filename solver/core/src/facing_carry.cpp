@@ -109,7 +109,8 @@ void carry_facing(const CrowdMotion& before, CrowdMotion& after, const CarriedSp
     after.orientation(f, a) = turned_by_yaw(q, yaw);
   }
   // From the frame before the span (a clip's seam) on: no faster than a person turns.
-  limit_facing_rate(after, a, span.first > 0 ? span.first - 1 : 0, span.first + L - 1, carried_max_turn_rate);
+  if (std::isfinite(span.max_turn_rate))
+    limit_facing_rate(after, a, span.first > 0 ? span.first - 1 : 0, span.first + L - 1, span.max_turn_rate);
 }
 
 void limit_facing_rate(CrowdMotion& motion, std::size_t agent, std::size_t first, std::size_t last, double max_rate) {
@@ -163,13 +164,15 @@ std::vector<std::int32_t> merge_action_tables(const std::vector<ActionKind>& fro
 }
 
 void carry_facing_same_frames(const CrowdMotion& before, CrowdMotion& after, const std::vector<std::size_t>& changed_agents,
-                              const PathPoseRule& rule) {
+                              const PathPoseRule& rule, double max_turn_rate) {
   after.orientations = before.orientations;
   after.actions = before.actions;
   after.action_table = before.action_table;
   if ((before.orientations.empty() && before.actions.empty()) || after.frame_count() == 0) return;
   auto carry = [&](std::size_t agent) {
-    carry_facing(before, after, CarriedSpan{agent, agent, 0, after.frame_count() - 1, 0, 0.0}, rule);
+    CarriedSpan span{agent, agent, 0, after.frame_count() - 1, 0, 0.0};
+    span.max_turn_rate = max_turn_rate;
+    carry_facing(before, after, span, rule);
   };
   for (std::size_t n : changed_agents) carry(n);
 }

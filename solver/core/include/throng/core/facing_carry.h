@@ -54,6 +54,8 @@ struct CarriedSpan {
   double rotation = 0.0;
   /// `before`'s action index → `after`'s table (a second clip whose table differs); nullptr: the same indices.
   const std::vector<std::int32_t>* action_map = nullptr;
+  /// rad/s: the carried facing turns no faster (limit_facing_rate); infinity: the rule above exactly.
+  double max_turn_rate = carried_max_turn_rate;
 };
 
 /// Writes `after`'s orientations and actions over the span from `before`'s by the rule above, then limits the
@@ -67,7 +69,7 @@ void carry_facing(const CrowdMotion& before, CrowdMotion& after, const CarriedSp
 /// `before`'s orientations, actions and action table: carried by the rule above for every agent in
 /// `changed_agents` (indices), copied for the rest. None when `before` has none.
 void carry_facing_same_frames(const CrowdMotion& before, CrowdMotion& after, const std::vector<std::size_t>& changed_agents,
-                              const PathPoseRule& rule = {});
+                              const PathPoseRule& rule = {}, double max_turn_rate = carried_max_turn_rate);
 
 /// Fills what `motion` lacks of orientations and actions with the path's default (PathFacing, path_action; the
 /// table becomes standard_actions() when actions are filled): for a part that has none joined to one that has.
