@@ -530,6 +530,29 @@ Array<std::int32_t> Group::read_int32(const std::string& name, int expected_rank
   return read_numeric<std::int32_t>(*this, context_of(context_), name, expected_rank, H5T_NATIVE_INT32, true);
 }
 
+namespace {
+
+// Every member of a file's compound type inside its row: libhdf5 1.10 converts rows by the members' stored offsets
+// without checking them against the row's size (a damaged file with a member past the row makes H5Dread read
+// past its own buffer), so the layout is checked before any read.
+void check_compound_layout(hid_t type, const std::string& where) {
+  const std::size_t row = H5Tget_size(type);
+  const int count = H5Tget_nmembers(type);
+  if (row == 0 || count < 0) throw InputError(where + ": has a damaged table type (" + hdf5_reason() + ")");
+  for (int i = 0; i < count; ++i) {
+    const auto u = static_cast<unsigned>(i);
+    Handle member_type(H5Tget_member_type(type, u));
+    const std::size_t offset = H5Tget_member_offset(type, u);
+    const std::size_t size = member_type.valid() ? H5Tget_size(member_type.id()) : 0;
+    if (size == 0 || offset > row || size > row - offset) {
+      throw InputError(where + ": column " + std::to_string(i) + " lies at bytes " + std::to_string(offset) + "+" +
+                       std::to_string(size) + " of a " + std::to_string(row) + "-byte row; truncated or damaged file?");
+    }
+  }
+}
+
+}  // namespace
+
 Array<double> Group::read_compound_member(const std::string& name, const std::string& member) const {
   ReadContext& context = context_of(context_);
   if (!has(name)) throw InputError(where(name) + ": missing dataset");
@@ -537,6 +560,7 @@ Array<double> Group::read_compound_member(const std::string& name, const std::st
   if (!set.valid()) throw InputError(where(name) + ": cannot open dataset (" + hdf5_reason() + ")");
   Handle type(H5Dget_type(set.id()));
   if (H5Tget_class(type.id()) != H5T_COMPOUND) throw InputError(where(name) + ": is not a compound dataset (a table of named columns)");
+  check_compound_layout(type.id(), where(name));
   const int index = H5Tget_member_index(type.id(), member.c_str());
   if (index < 0) throw InputError(where(name) + ": has no member '" + member + "'");
   Handle member_type(H5Tget_member_type(type.id(), static_cast<unsigned>(index)));
