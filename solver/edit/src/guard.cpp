@@ -32,8 +32,8 @@ std::vector<std::size_t> constrained_frames(const Request& request, std::size_t 
           using T = std::decay_t<decltype(k)>;
           if constexpr (std::is_same_v<T, Velocity>) {
             // (p(f + 1) − p(f)) / Δt, the backward difference at the clip's last frame: both frames hold.
-            const long f = clip.absolute(k.frame);
-            clip.add_range(f - 1, f + 1, out);
+            const long f = clip.absolute(k.frame), f0 = f < static_cast<long>(clip.last) ? f : f - 1;
+            clip.add_range(f0, f0 + 1, out);
           } else {
             clip.add_range(k.first_frame, k.last_frame, out);
           }
