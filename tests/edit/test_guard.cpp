@@ -43,7 +43,7 @@ Run edit_with(const Crowd& input, const Job& job) {
 
 }  // namespace
 
-TEST_CASE("edit guard: a drag that makes the clip too fast is slowed to 1.25 x the input's fastest speed") {
+TEST_CASE("guard: a drag that makes the clip too fast is slowed to 1.25 x the input's fastest speed") {
   const Crowd input = walking_group();
   const double input_fastest = timewarp::fastest_speed(input.motion);
   REQUIRE(input_fastest > 1.1);
@@ -91,7 +91,7 @@ TEST_CASE("edit guard: a drag that makes the clip too fast is slowed to 1.25 x t
   CHECK(widest_yaw(out) <= edited_yaw + 1e-3);
 }
 
-TEST_CASE("edit guard: disabled, the output is the paper's edit bit for bit") {
+TEST_CASE("guard: disabled, the output is the paper's edit bit for bit") {
   const Crowd input = walking_group();
   Job job;
   job.options.clip.sample_step = 6;
@@ -109,7 +109,7 @@ TEST_CASE("edit guard: disabled, the output is the paper's edit bit for bit") {
   CHECK(out.orientations == expected.orientations);
 }
 
-TEST_CASE("edit guard: kinks at a drag's edge are smoothed, the request still held on every frame it covers") {
+TEST_CASE("guard: kinks at a drag's edge are smoothed, the request still held on every frame it covers") {
   const Crowd input = walking_group();
   Job job;
   job.options.clip.sample_step = 6;
@@ -141,7 +141,7 @@ TEST_CASE("edit guard: kinks at a drag's edge are smoothed, the request still he
     for (std::size_t a = 0; a < g.agent_count(); ++a) CHECK((g.position(f, a) - b.position(f, a)).norm() < 1e-9);
 }
 
-TEST_CASE("edit guard: the frames a request constrains, as the editor reads them") {
+TEST_CASE("guard: the frames a request constrains, as the editor reads them") {
   Request r;
   Pin p;
   p.frame = -1;  // the clip's last frame
