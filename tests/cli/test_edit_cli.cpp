@@ -49,13 +49,16 @@ constraints:
 TEST_CASE("edit writes the edited crowd and reports it") {
   const auto dir = test::scratch_dir("cli_edit");
   const auto input = write_input(dir);
-  const auto job = write_job(dir, "job.yaml", drag_job);
+  // The paper's edit (the guard off): the request holds on the input's frames.
+  const auto job = write_job(dir, "job.yaml", std::string(drag_job) + "guard: {enabled: false}\n");
   const auto output = dir / "out.h5";
   std::string out;
   REQUIRE(run("--json --quiet edit " + input.string() + " --job " + job.string() + " -o " + output.string(), &out) == 0);
   const auto report = nlohmann::json::parse(out);
   CHECK(report["agents"] == 20);
   CHECK(report["frames"] == 41);
+  CHECK(report["guard_warped"] == false);
+  CHECK(report["residual_after_guard"] == true);
   CHECK(report["samples"] == 24);  // 0, 2, ..., 40, and the frames the request names: 1, 21 (velocity), 39
   CHECK(report["constraint_rows"] == 2);
   CHECK(report["max_constraint_residual_m"].get<double>() < 1e-9);
@@ -89,6 +92,7 @@ TEST_CASE("edit puts the edited clip back into the whole crowd: same agents, ids
   write_crowd_file(dir / "in.h5", file);
   const auto job = write_job(dir, "job.yaml", R"(
 clip: {first_frame: 10, last_frame: 35, sample_step: 3}
+guard: {enabled: false}   # the paper's edit: the output's frames are the input's
 drags:
   - {frames: [10, 12]}
   - {frames: [-3, end], offset: [2, 1]}
@@ -155,6 +159,32 @@ drags:
   for (std::size_t f = 0; f < 26; ++f) {
     for (std::size_t a = 0; a < 19; ++a) CHECK(clip.motion.position(f, a) == edited.motion.position(10 + f, a));
   }
+}
+
+TEST_CASE("edit's guard slows a drag that is too fast and reports it") {
+  // drag_job moves the tail 3.6 m in 4 s on top of a 1.2 m/s march: too fast for 1.25 × the input's fastest.
+  const auto dir = test::scratch_dir("cli_edit_guard");
+  const auto input = write_input(dir);
+  const auto job = write_job(dir, "job.yaml", drag_job);
+  std::string out;
+  REQUIRE(run("--json --quiet edit " + input.string() + " --job " + job.string() + " -o " + (dir / "out.h5").string(), &out) == 0);
+  const auto report = nlohmann::json::parse(out);
+  const CrowdFile in = read_crowd_file(input), edited = read_crowd_file(dir / "out.h5");
+  CHECK(report["guard_warped"] == true);
+  CHECK(report["guard_largest_stretch"].get<double>() > 1);
+  CHECK(report["residual_after_guard"] == false);
+  CHECK(report["frames"] == edited.motion.frame_count());
+  CHECK(edited.motion.frame_count() > in.motion.frame_count());
+  CHECK(edited.motion.ids == in.motion.ids);
+  double input_fastest = 0, fastest = 0;
+  for (const auto* m : {&in.motion, &edited.motion}) {
+    double& top = m == &in.motion ? input_fastest : fastest;
+    for (std::size_t f = 0; f + 1 < m->frame_count(); ++f)
+      for (std::size_t a = 0; a < m->agent_count(); ++a)
+        top = std::max(top, (m->position(f + 1, a) - m->position(f, a)).head<2>().norm() / (m->times[f + 1] - m->times[f]));
+  }
+  CHECK(fastest <= 1.25 * input_fastest * (1 + 1e-9));
+  CHECK_THAT(report["guard_max_speed_m_s"].get<double>(), Catch::Matchers::WithinRel(fastest, 1e-9));
 }
 
 TEST_CASE("edit --print-config prints the effective job and writes nothing") {

@@ -11,6 +11,7 @@ namespace {
 
 const char* full_job = R"(
 clip_only: true
+guard: {enabled: false, max_speed_ratio: 1.5, max_acceleration: 4, ramp_time: 2, smoothing_time: 0.25, max_window_time: 1}
 clip: {first_frame: 5, last_frame: end, agents: [100, 101, 102], sample_step: 3}
 formation:
   max_edge_length: 4.5
@@ -41,6 +42,10 @@ TEST_CASE("every key of a full job is read") {
   const edit::Job job = parse(full_job);
   CHECK(job.clip_only);
   CHECK_FALSE(parse("{}").clip_only);  // default: the whole crowd with the clip put back
+  CHECK_FALSE(job.guard.enabled);
+  CHECK(parse("{}").guard.enabled);  // default: the guard on
+  CHECK((job.guard.max_speed_ratio == 1.5 && job.guard.max_acceleration == 4 && job.guard.ramp_time == 2 &&
+         job.guard.smoothing_time == 0.25 && job.guard.max_window_time == 1));
   const edit::Options& o = job.options;
   CHECK(o.clip.first_frame == 5);
   CHECK(o.clip.last_frame == std::numeric_limits<std::size_t>::max());
@@ -80,11 +85,13 @@ TEST_CASE("the effective job reads back to the same job") {
   CHECK(again.options.formation.edits.size() == 2);
   // Defaults are written out in full.
   const std::string defaults = to_yaml_text(effective_job(parse("{}")));
-  CHECK_THAT(defaults, Contains("sample_step: 1") && Contains("backend: eigen") && Contains("last_frame: end"));
+  CHECK_THAT(defaults, Contains("sample_step: 1") && Contains("backend: eigen") && Contains("last_frame: end") &&
+                          Contains("max_speed_ratio: 1.25"));
 }
 
 TEST_CASE("malformed entries are configuration errors naming the line") {
   CHECK_THROWS_WITH(parse("weights: {alpha: 1, gamma: 2}\n"), Contains("gamma"));
+  CHECK_THROWS_WITH(parse("guard: {max_speed_ratio: 0}\n"), Contains("guard.max_speed_ratio"));
   CHECK_THROWS_WITH(parse("constraints:\n  - {type: speed, agent: 1}\n"), Contains("edit.yaml:2") && Contains("unknown constraint type 'speed'"));
   CHECK_THROWS_WITH(parse("drags:\n  - {frames: [1, 2, 3]}\n"), Contains("expected [first, last]"));
   CHECK_THROWS_WITH(parse("pins:\n  - {agent: 1}\n"), Contains("frame"));

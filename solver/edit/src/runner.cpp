@@ -1,7 +1,9 @@
 #include <throng/core/format.h>
+#include <throng/edit/guard.h>
 #include <throng/edit/output.h>
 #include <throng/edit/runner.h>
 #include <throng/edit/schema.h>
+#include <throng/timewarp/schema.h>
 
 #include <algorithm>
 #include <unordered_map>
@@ -31,6 +33,7 @@ void describe(OptionBinder& b, Job& job) {
   b.field({.key = "clip_only", .flag = "--clip-only",
            .help = "write only the clip (its frames and the agents it edited), not the whole crowd"},
           job.clip_only);
+  b.section("guard", [&](OptionBinder& g) { timewarp::describe(g, job.guard); });
 }
 
 Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communicator& communicator) {
@@ -62,6 +65,8 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
                            std::to_string(job.options.local.halo) + ") or use larger parts (local.vertices_per_part)");
   }
   out.seam_jump_m = seam_jump(input.motion, r.crowd, r.first_frame);
+  const std::vector<std::int64_t> clip_ids = r.crowd.ids;
+  const std::size_t first_frame = r.first_frame, last_frame = r.last_frame;
   out.crowd.scene = input.scene;
   if (job.clip_only) {
     out.crowd.formation_edges = clip_edges(input, r.crowd);
@@ -76,6 +81,18 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
                              std::to_string(r.last_frame) + " of 0.." + std::to_string(input.motion.frame_count() - 1) +
                              "): the output jumps there; hold the clip's ends or use --clip-only");
     }
+  }
+  // The guard on what is written (guard.h), then the request measured again on the written frames when their
+  // times are still the input's; after a warp the measure before it stands (the request holds at warped times).
+  const std::size_t written_first = job.clip_only ? first_frame : 0;
+  timewarp::GuardResult guarded =
+      guard_edit(out.crowd.motion, written_first, input.motion, job.request, first_frame, last_frame, job.guard);
+  out.crowd.motion = std::move(guarded.crowd);
+  out.guard = guarded.report;
+  if (!out.guard.warped) {
+    out.residual_after_guard = true;
+    out.result.report.max_output_residual = max_request_residual(
+        input.motion, clip_of(out.crowd.motion, written_first, first_frame, last_frame, clip_ids), first_frame, job.request);
   }
   return out;
 }
@@ -111,6 +128,16 @@ void describe(ReportWriter& w, const Run& run) {
   w.number("solver_error_m", r.solver_error_m);
   w.count("coarse_size", r.coarse_size);
   w.number("direct_difference_m", r.direct_difference_m);
+  // The plausibility guard on the written crowd (guard.h), as stitch reports it; whether max_constraint_residual_m
+  // was measured after it (false: the guard warped, the residual is the edit's before it).
+  const timewarp::GuardReport& g = run.guard;
+  w.flag("guard_warped", g.warped);
+  w.number("guard_largest_stretch", g.largest_stretch);
+  w.count("guard_kinks_before", g.kinks_before);
+  w.count("guard_kinks_after", g.kinks_after);
+  w.number("guard_max_speed_m_s", g.max_speed_after);
+  w.number("guard_max_acceleration_m_s2", g.max_acceleration_after);
+  w.flag("residual_after_guard", run.residual_after_guard);
   if (!result.boundary) return;
   w.count("parts", static_cast<std::size_t>(r.parts));
   w.count("region_parts", static_cast<std::size_t>(r.region_parts));
