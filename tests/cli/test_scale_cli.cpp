@@ -63,7 +63,8 @@ double max_gap(const CrowdMotion& a, const CrowdMotion& b) {
 TEST_CASE("a local edit solves part of the crowd, and with a full halo gives the global edit") {
   const auto dir = test::scratch_dir("cli_scale_local");
   const auto input = write_input(dir);
-  const auto job = write_text(dir / "job.yaml", corner_drag);
+  // The guard off: the local edit is compared with the input and the global edit frame by frame.
+  const auto job = write_text(dir / "job.yaml", std::string(corner_drag) + "guard: {enabled: false}\n");
   const std::string base = "--json --quiet edit " + input.string() + " --job " + job.string();
   std::string out;
   REQUIRE(run(base + " -o " + (dir / "global.h5").string(), &out) == 0);
@@ -92,7 +93,7 @@ TEST_CASE("a local edit solves part of the crowd, and with a full halo gives the
   }
   CHECK(untouched > in.motion.agent_count() / 2);
   // The job's local block does what the flags do, bit for bit.
-  const auto job_local = write_text(dir / "job_local.yaml", std::string(corner_drag) + "local: {parts: 8, halo: 0}\n");
+  const auto job_local = write_text(dir / "job_local.yaml", std::string(corner_drag) + "guard: {enabled: false}\nlocal: {parts: 8, halo: 0}\n");
   REQUIRE(run("--quiet edit " + input.string() + " --job " + job_local.string() + " -o " + (dir / "local2.h5").string()) == 0);
   CHECK(read_crowd_file(dir / "local2.h5").motion.positions == local.motion.positions);
   // One and two threads give the same bits.
