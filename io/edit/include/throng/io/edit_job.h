@@ -36,6 +36,13 @@
 //     halo: 1                         # parts within this many hops of the reached ones are solved too; -1 = all connected (--halo)
 //     seed: 1                         # METIS seed: same seed, same parts
 //     max_cached_regions: 8           # factorised regions kept for later drags (matters to interactive use)
+//   guard:                            # plausibility after the edit (timewarp/guard.h; docs/commands/edit.md)
+//     enabled: true                   # false: the paper's edit exactly (and before a timewarp step, which
+//                                     # needs the edit's own frames)
+//     max_speed_ratio: 1.25           # speed ≤ this × the input's fastest (a slow-down where it is not)
+//     max_acceleration: 3             # m/s²: frames beyond this and the input's own are smoothed, the
+//                                     # request's frames held
+//     ramp_time: 1                    # s; smoothing_time 0.5 s, max_window_time 2 s as in stitch
 //   pins:                             # an agent at a frame stays (or is put) somewhere
 //     - {agent: 12, frame: 40}                    # where it is
 //     - {agent: 12, frame: 80, position: [3, 4]}
