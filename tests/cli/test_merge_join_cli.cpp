@@ -1,6 +1,7 @@
 // `throng merge --join-by id` as the inverse of `throng split` on a recorded crowd (issue 17): the two halves of
 // zara01 cut at a time give back the same crowd (agents, ids, positions at every frame, obstacles); one id at two
 // places is exit 3 naming it; without joining the people who cross the cut are renumbered and the walls kept once.
+#include "positions_by_id.h"
 #include "cli.h"
 #include "test_paths.h"
 
@@ -21,25 +22,6 @@ using test::run;
 
 std::string s(const std::filesystem::path& p) { return p.string(); }
 
-// Each agent's positions at every frame (NaN where absent), by id.
-std::map<std::int64_t, std::vector<double>> by_id(const CrowdMotion& c) {
-  std::map<std::int64_t, std::vector<double>> out;
-  for (std::size_t a = 0; a < c.agent_count(); ++a) {
-    auto& v = out[c.ids[a]];
-    for (std::size_t f = 0; f < c.frame_count(); ++f) {
-      for (int d = 0; d < 3; ++d) v.push_back(c.position(f, a)[d]);
-    }
-  }
-  return out;
-}
-
-bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    if (!(a[k] == b[k] || (std::isnan(a[k]) && std::isnan(b[k])))) return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -66,10 +48,10 @@ TEST_CASE("zara01 split at a time and merged back joined by id is the same crowd
   // The same crowd: frame times, agents and ids, positions at every frame, obstacles.
   CHECK(back.motion.times == zara.motion.times);
   REQUIRE(back.motion.agent_count() == zara.motion.agent_count());
-  const auto original = by_id(zara.motion), merged = by_id(back.motion);
+  const auto original = test::positions_by_id(zara.motion), merged = test::positions_by_id(back.motion);
   REQUIRE(merged.size() == original.size());
   std::size_t differing = 0;
-  for (const auto& [id, values] : original) differing += merged.count(id) && same_values(merged.at(id), values) ? 0 : 1;
+  for (const auto& [id, values] : original) differing += merged.count(id) && test::same_values(merged.at(id), values) ? 0 : 1;
   CHECK(differing == 0);
   CHECK(back.scene.obstacles.size() == zara.scene.obstacles.size());
 
@@ -77,7 +59,7 @@ TEST_CASE("zara01 split at a time and merged back joined by id is the same crowd
     test::write_file(dir / "merge.yaml", "join_by: id\nspan: union\n");
     REQUIRE(run("--quiet merge " + s(dir / "head.h5") + " " + s(dir / "tail.h5") + " --job " + s(dir / "merge.yaml") + " -o " +
                 s(dir / "again.h5")) == 0);
-    CHECK(by_id(read_crowd_file(dir / "again.h5").motion).size() == original.size());
+    CHECK(test::positions_by_id(read_crowd_file(dir / "again.h5").motion).size() == original.size());
   }
   SECTION("without joining (the default) the crossing people are renumbered, the walls still kept once") {
     REQUIRE(run("--quiet --json merge " + s(dir / "head.h5") + " " + s(dir / "tail.h5") + " --span union -o " + s(dir / "two.h5"),

@@ -1,6 +1,7 @@
 // Merge as the inverse of split (issue 17): identical obstacles kept once, agents joined by identity (join_by id)
 // so a crowd cut in two and merged back is the same crowd, one id at two places an error naming it, and facing and
 // actions through split and merge.
+#include "positions_by_id.h"
 #include "../graph/synthetic_crowd.h"
 
 #include <throng/core/errors.h>
@@ -47,25 +48,6 @@ CrowdMotion comings_and_goings() {
   return c;
 }
 
-// Agent by id: its positions at every frame (NaN where absent).
-std::map<std::int64_t, std::vector<double>> by_id(const CrowdMotion& c) {
-  std::map<std::int64_t, std::vector<double>> out;
-  for (std::size_t a = 0; a < c.agent_count(); ++a) {
-    auto& v = out[c.ids[a]];
-    for (std::size_t f = 0; f < c.frame_count(); ++f) {
-      for (int d = 0; d < 3; ++d) v.push_back(c.position(f, a)[d]);
-    }
-  }
-  return out;
-}
-
-bool same_values(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    if (!(a[k] == b[k] || (std::isnan(a[k]) && std::isnan(b[k])))) return false;
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -108,12 +90,12 @@ TEST_CASE("the halves of a crowd cut in time and merged joined by id are the cro
   REQUIRE(m.crowd.frame_count() == c.frame_count());
   CHECK(m.crowd.times == c.times);
   REQUIRE(m.crowd.agent_count() == c.agent_count());
-  const auto original = by_id(c), merged = by_id(m.crowd);
+  const auto original = test::positions_by_id(c), merged = test::positions_by_id(m.crowd);
   REQUIRE(merged.size() == original.size());
   for (const auto& [id, values] : original) {
     INFO("agent " << id);
     REQUIRE(merged.count(id) == 1);
-    CHECK(same_values(merged.at(id), values));
+    CHECK(test::same_values(merged.at(id), values));
   }
   CHECK(m.crowd.velocities.size() == m.crowd.positions.size());
   CHECK(m.scene.obstacles.size() == 4);
@@ -133,9 +115,9 @@ TEST_CASE("the halves of a crowd cut in time and merged joined by id are the cro
   SECTION("the halves may overlap by more than the cut frame where their samples agree") {
     const CrowdMotion head = slice_frames(c, 0, 20), tail = slice_frames(c, 10, 29);
     const Merged again = merge(head, walls, tail, walls, o);
-    const auto joined = by_id(again.crowd);
+    const auto joined = test::positions_by_id(again.crowd);
     REQUIRE(joined.size() == original.size());
-    for (const auto& [id, values] : original) CHECK(same_values(joined.at(id), values));
+    for (const auto& [id, values] : original) CHECK(test::same_values(joined.at(id), values));
   }
   SECTION("one id at two places at one frame is an error naming the id, the time and the frames") {
     CrowdMotion tail = s.second;

@@ -130,13 +130,7 @@ void describe(ReportWriter& w, const Run& run) {
   w.number("direct_difference_m", r.direct_difference_m);
   // The plausibility guard on the written crowd (guard.h), as stitch reports it; whether max_constraint_residual_m
   // was measured after it (false: the guard warped, the residual is the edit's before it).
-  const timewarp::GuardReport& g = run.guard;
-  w.flag("guard_warped", g.warped);
-  w.number("guard_largest_stretch", g.largest_stretch);
-  w.count("guard_kinks_before", g.kinks_before);
-  w.count("guard_kinks_after", g.kinks_after);
-  w.number("guard_max_speed_m_s", g.max_speed_after);
-  w.number("guard_max_acceleration_m_s2", g.max_acceleration_after);
+  timewarp::describe(w, run.guard);
   w.flag("residual_after_guard", run.residual_after_guard);
   if (!result.boundary) return;
   w.count("parts", static_cast<std::size_t>(r.parts));

@@ -17,12 +17,6 @@ double interval_speed(const CrowdMotion& m, const std::vector<std::size_t>& keyf
   return fastest;
 }
 
-double fastest_speed(const CrowdMotion& m, const std::vector<std::size_t>& keyframe_frames) {
-  double v = 0;
-  for (std::size_t k = 0; k + 1 < keyframe_frames.size(); ++k) v = std::max(v, interval_speed(m, keyframe_frames, k));
-  return v;
-}
-
 }  // namespace
 
 double keyframe_speed(const CrowdMotion& motion, const std::vector<std::size_t>& keyframe_frames) {
@@ -43,7 +37,7 @@ void guard_formation(Problem& problem, Result& result, const Options& options, P
   const std::size_t K = problem.keyframes.size();
   const double stated = options.max_speed_mps > 0 ? options.max_speed_mps : keyframe_speed(result.motion, result.keyframe_frames);
   report.speed_limit = options.guard.max_speed_ratio * stated;
-  report.max_speed_before = fastest_speed(result.motion, result.keyframe_frames);
+  report.max_speed_before = timewarp::fastest_speed(result.motion);
   report.duration_before = problem.keyframes.back().time_s - problem.keyframes.front().time_s;
   std::vector<double> original(K);
   for (std::size_t k = 0; k < K; ++k) original[k] = problem.keyframes[k].time_s;
@@ -89,7 +83,7 @@ void guard_formation(Problem& problem, Result& result, const Options& options, P
   report.largest_shift = smoothed.report.largest_shift;
   report.max_acceleration_before = smoothed.report.max_acceleration_before;
   report.max_acceleration_after = smoothed.report.max_acceleration_after;
-  report.max_speed_after = fastest_speed(result.motion, result.keyframe_frames);
+  report.max_speed_after = timewarp::fastest_speed(result.motion);
   result.guard = report;
 }
 

@@ -63,14 +63,10 @@ void describe(ReportWriter& w, const Run& run) {
   w.count("formation_edges", run.crowd.formation_edges.size());
   if (r.guard.speed_limit > 0) {
     // The plausibility guard (plausibility.h): how much it re-timed the keyframes and smoothed the paths.
-    w.flag("guard_retimed", r.guard.warped);
-    w.number("guard_largest_stretch", r.guard.largest_stretch);
+    // guard_warped: the keyframes were re-timed.
+    timewarp::describe(w, r.guard);
     w.number("guard_speed_limit_m_s", r.guard.speed_limit);
     w.number("guard_max_speed_before_m_s", r.guard.max_speed_before);
-    w.number("guard_max_speed_m_s", r.guard.max_speed_after);
-    w.count("guard_kinks_before", r.guard.kinks_before);
-    w.count("guard_kinks_after", r.guard.kinks_after);
-    w.number("guard_max_acceleration_m_s2", r.guard.max_acceleration_after);
   }
   if (!r.collision.ran) return;
   w.flag("collision_satisfied", r.collision.satisfied);

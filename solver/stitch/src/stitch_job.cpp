@@ -106,12 +106,7 @@ void describe(ReportWriter& w, const StitchRun& run) {
     j.number("max_change_m", r.max_change);
     // The plausibility guard after the solve (stitch.h "Plausibility"): whether it slowed the clip down, and
     // the kinks left beyond the acceleration limit before and after its smoothing.
-    j.flag("guard_warped", r.guard.warped);
-    j.number("guard_largest_stretch", r.guard.largest_stretch);
-    j.count("guard_kinks_before", r.guard.kinks_before);
-    j.count("guard_kinks_after", r.guard.kinks_after);
-    j.number("guard_max_speed_m_s", r.guard.max_speed_after);
-    j.number("guard_max_acceleration_m_s2", r.guard.max_acceleration_after);
+    timewarp::describe(j, r.guard);
     j.seconds("solve_s", r.matching_seconds + r.graph_seconds + r.precompute_seconds + r.solve_seconds);
   });
 }

@@ -163,6 +163,15 @@ Source source_of(const CrowdMotion& output, const CrowdMotion& reference, double
   return {fastest_speed(reference), accelerations(match_reference(output, reference, time_tolerance_s))};
 }
 
+void describe(ReportWriter& w, const GuardReport& g) {
+  w.flag("guard_warped", g.warped);
+  w.number("guard_largest_stretch", g.largest_stretch);
+  w.count("guard_kinks_before", g.kinks_before);
+  w.count("guard_kinks_after", g.kinks_after);
+  w.number("guard_max_speed_m_s", g.max_speed_after);
+  w.number("guard_max_acceleration_m_s2", g.max_acceleration_after);
+}
+
 GuardResult guard(const CrowdMotion& output, const Source& source, const GuardOptions& o) {
   validate(o);
   const std::size_t T = output.frame_count(), N = output.agent_count();

@@ -91,13 +91,7 @@ void describe(ReportWriter& w, const Run& run) {
   w.count("clamped_long", r.clamped_long);
   w.count("still_intervals", r.still_intervals);
   // The plausibility guard after the warp (guard.h), as stitch reports it.
-  const GuardReport& g = run.guard;
-  w.flag("guard_warped", g.warped);
-  w.number("guard_largest_stretch", g.largest_stretch);
-  w.count("guard_kinks_before", g.kinks_before);
-  w.count("guard_kinks_after", g.kinks_after);
-  w.number("guard_max_speed_m_s", g.max_speed_after);
-  w.number("guard_max_acceleration_m_s2", g.max_acceleration_after);
+  describe(w, run.guard);
 }
 
 }  // namespace throng::timewarp

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <throng/core/crowd_motion.h>
+#include <throng/core/report.h>
 #include <throng/timewarp/timewarp.h>
 
 #include <cstddef>
@@ -80,6 +81,11 @@ struct GuardResult {
   Warp warp;          ///< identity (warped = source times) when not warped
   GuardReport report;
 };
+
+/// The report's guard fields, the same for every command that guards its output (stitch, edit, timewarp,
+/// formation): guard_warped, guard_largest_stretch, guard_kinks_before, guard_kinks_after, guard_max_speed_m_s,
+/// guard_max_acceleration_m_s2.
+void describe(ReportWriter& w, const GuardReport& report);
 
 /// Guards `output` (see above). Throws InputError when `source`'s acceleration has the wrong size.
 [[nodiscard]] GuardResult guard(const CrowdMotion& output, const Source& source, const GuardOptions& options);
