@@ -90,21 +90,27 @@ std::string random_suffix() {
 
 }  // namespace
 
-AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(target)) {
-  if (target_.empty()) throw ConfigError("the output file name is empty; give a file name with -o");
-  if (!target_.has_filename() || target_.filename() == "." || target_.filename() == "..") {
-    throw IoError(target_.string() + ": names a folder, expected a file name");
+void check_output_target(const std::filesystem::path& target) {
+  if (target.empty()) throw ConfigError("the output file name is empty; give a file name with -o");
+  if (!target.has_filename() || target.filename() == "." || target.filename() == "..") {
+    throw IoError(target.string() + ": names a folder, expected a file name");
   }
-  std::filesystem::path folder = target_.parent_path();
+  std::filesystem::path folder = target.parent_path();
   if (folder.empty()) folder = ".";
   struct stat st {};
   if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-    throw IoError(target_.string() + ": cannot write, folder " + folder.string() + " does not exist");
+    throw IoError(target.string() + ": cannot write, folder " + folder.string() + " does not exist");
   }
-  if (::access(folder.c_str(), W_OK) != 0) throw IoError(target_.string() + ": cannot write, folder " + folder.string() + " is not writable");
-  if (const std::string what = not_regular(target_); !what.empty()) {
-    throw IoError(target_.string() + ": is " + what + "; throng replaces only regular files (choose another output name)");
+  if (::access(folder.c_str(), W_OK) != 0) throw IoError(target.string() + ": cannot write, folder " + folder.string() + " is not writable");
+  if (const std::string what = not_regular(target); !what.empty()) {
+    throw IoError(target.string() + ": is " + what + "; throng replaces only regular files (choose another output name)");
   }
+}
+
+AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(target)) {
+  check_output_target(target_);
+  std::filesystem::path folder = target_.parent_path();
+  if (folder.empty()) folder = ".";
   folder_fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (folder_fd_ < 0) throw IoError(target_.string() + ": cannot open folder " + folder.string() + " (" + reason(errno) + ")");
   const std::string stem = "." + target_.filename().string() + ".tmp-";

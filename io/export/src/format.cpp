@@ -9,16 +9,7 @@
 namespace throng {
 namespace {
 
-// The output's folder exists: checked before the crowd is read, with AtomicOutput's message.
-void check_output_folder(const std::filesystem::path& output) {
-  std::filesystem::path folder = output.parent_path();
-  if (folder.empty()) folder = ".";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(folder, ec)) {
-    throw IoError(output.string() + ": cannot write, folder " + folder.string() + " does not exist");
-  }
-}
-
+// The rows a table export writes: one per present agent and frame.
 std::size_t present_count(const CrowdMotion& m) {
   std::size_t rows = 0;
   for (std::size_t t = 0; t < m.frame_count(); ++t) {
@@ -81,7 +72,7 @@ ExportSummary export_crowd(ExportFormat format, const std::filesystem::path& cro
   }
   check_distinct(crowd, output);
   if (format == ExportFormat::csv) check_distinct(crowd, csv_obstacles_path(output));
-  check_output_folder(output);
+  check_output_target(output);  // before reading the crowd
   return export_crowd(format, read_crowd_file(crowd), output, options, pedpy);
 }
 

@@ -18,6 +18,11 @@
 
 namespace throng {
 
+/// The checks AtomicOutput makes of its target before it writes anything, for a command that wants to fail before
+/// long work (reading a large crowd): ConfigError (exit 2) for an empty name; IoError (exit 4) naming the target
+/// when it names a folder, its folder is missing or not writable, or something other than a regular file is there.
+void check_output_target(const std::filesystem::path& target);
+
 class AtomicOutput {
  public:
   /// Checks `target` and creates the temporary file. ConfigError (exit 2) for an empty name; IoError (exit 4)
