@@ -88,7 +88,7 @@ void write_scene(const h5::Group& parameters, const Scene& scene) {
   }
 }
 
-Scene read_scene(const h5::Group& parameters, const ReadLimits& limits) {
+Scene read_scene(const h5::Group& parameters) {
   Scene scene;
   if (!parameters.has("scene")) return scene;
   const h5::Group g = parameters.open_group("scene");
@@ -113,7 +113,7 @@ Scene read_scene(const h5::Group& parameters, const ReadLimits& limits) {
                                    checked_sum(checked_product(vertices.shape[0], sizeof(Eigen::Vector2d)).value_or(UINT64_MAX),
                                                checked_product(motion.shape[0], sizeof(PoseKey)).value_or(UINT64_MAX))
                                        .value_or(UINT64_MAX));
-    MemoryBudget(limits).charge(bytes.value_or(UINT64_MAX), o.where(), std::to_string(K) + " obstacles");
+    o.budget().charge(bytes.value_or(UINT64_MAX), o.where(), std::to_string(K) + " obstacles");
     for (std::size_t k = 0; k < K; ++k) {
       const std::int64_t v0 = vertex_offset[k], v1 = vertex_offset[k + 1];
       const std::int64_t m0 = motion_offset[k], m1 = motion_offset[k + 1];
@@ -541,7 +541,7 @@ CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& l
     p.seed = parameters.unsigned_attribute("seed").value_or(0);
     p.inputs = parameters.string_array_attribute("inputs");
     p.credits = parameters.string_array_attribute("credits");
-    out.scene = read_scene(parameters, limits);
+    out.scene = read_scene(parameters);
   }
   if (const auto box = read_periodic_box(trajectory)) {
     apply_periodic_box(*box, trajectory, m, out.scene);

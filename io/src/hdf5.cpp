@@ -71,8 +71,6 @@ Handle access_properties(hid_t property_class) {
 constexpr std::uint64_t deflate_max_ratio = 1032;
 // A dataset may declare this many bytes beyond what its storage bounds (unwritten datasets read as fill values).
 constexpr std::uint64_t storage_slack_bytes = 64 * 1024;
-// Largest element a numeric dataset or attribute may have (HDF5's widest native numbers are 16 bytes).
-constexpr std::size_t max_number_size = 16;
 
 // Why HDF5 failed, for our messages: the outermost and the innermost descriptions of its current error stack (the
 // steps between repeat them); a system error is given by its text alone ("No space left on device"), not by
@@ -190,9 +188,34 @@ Extent extent_of(hid_t space, const std::string& where) {
   return e;
 }
 
+// A number type libhdf5 converts safely: integers of 1, 2, 4 or 8 whole bytes and IEEE 754 single and double
+// precision floats, in either byte order. libhdf5 1.10 converts what a type's fields state: a crafted float type
+// (fields wider than a machine word or past its bytes) smashed the stack in H5T__bit_get_d (found by fuzz_import),
+// so every other layout is refused before a conversion sees it. InputError naming `where`.
+void check_number_layout(hid_t type, const std::string& where) {
+  const std::size_t size = H5Tget_size(type);
+  const H5T_order_t order = H5Tget_order(type);
+  bool standard = (order == H5T_ORDER_LE || order == H5T_ORDER_BE || (order == H5T_ORDER_NONE && size == 1)) &&
+                  H5Tget_offset(type) == 0 && H5Tget_precision(type) == 8 * size;
+  if (H5Tget_class(type) == H5T_FLOAT) {
+    std::size_t spos = 0, epos = 0, esize = 0, mpos = 0, msize = 0;
+    standard = standard && H5Tget_fields(type, &spos, &epos, &esize, &mpos, &msize) >= 0 && mpos == 0 &&
+               H5Tget_norm(type) == H5T_NORM_IMPLIED &&
+               ((size == 4 && spos == 31 && epos == 23 && esize == 8 && msize == 23 && H5Tget_ebias(type) == 127) ||
+                (size == 8 && spos == 63 && epos == 52 && esize == 11 && msize == 52 && H5Tget_ebias(type) == 1023));
+  } else {
+    standard = standard && (size == 1 || size == 2 || size == 4 || size == 8);
+  }
+  if (!standard) {
+    throw InputError(where + ": stores " + std::to_string(size) + "-byte numbers in a layout throng does not read (damaged or hostile " +
+                     "file?); throng reads 1-, 2-, 4- and 8-byte integers and IEEE 754 single and double precision");
+  }
+}
+
 // What the file holds of a dataset, checked: no external files, no virtual layout, known filters; the declared
-// bytes (`file_bytes`) within what the storage can expand to. Throws InputError naming the dataset.
-void check_dataset_storage(hid_t set, const std::string& where, const Extent& e, std::uint64_t file_element_size,
+// bytes (`file_bytes`) within what the storage can expand to. Throws InputError naming the dataset. Returns the
+// working memory libhdf5 needs besides the caller's buffer to read it (require_working_memory checks it).
+std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const Extent& e, std::uint64_t file_element_size,
                            const ReadContext& context) {
   const Handle dcpl(H5Dget_create_plist(set));
   if (!dcpl.valid()) throw InputError(where + ": cannot read its storage properties (damaged file?)");
@@ -218,7 +241,7 @@ void check_dataset_storage(hid_t set, const std::string& where, const Extent& e,
   }
   const auto file_bytes = checked_product(e.count, file_element_size);
   if (!file_bytes) throw InputError(where + ": shape " + shape_text(e.dims) + " holds more bytes than a 64-bit count (damaged file?)");
-  if (!context.bounded || *file_bytes == 0) return;
+  if (!context.bounded || *file_bytes == 0) return 0;
 
   const std::uint64_t stored = H5Dget_storage_size(set);
   if (stored > context.file_size) {
@@ -243,7 +266,7 @@ void check_dataset_storage(hid_t set, const std::string& where, const Extent& e,
       throw InputError(where + ": declares " + shape_text(e.dims) + " (" + format_bytes(*file_bytes) + ") but its layout stores " +
                        format_bytes(stored) + ": damaged file");
     }
-    if (layout == H5D_CONTIGUOUS) return;
+    if (layout == H5D_CONTIGUOUS) return 0;
   }
   const auto bound = checked_sum(checked_product(stored, ratio).value_or(UINT64_MAX), storage_slack_bytes).value_or(UINT64_MAX);
   if (*file_bytes > bound) {
@@ -262,7 +285,18 @@ void check_dataset_storage(hid_t set, const std::string& where, const Extent& e,
       throw InputError(where + ": its chunks (" + (chunk_bytes ? format_bytes(*chunk_bytes) : std::string("beyond 2^64 bytes")) +
                        " each) are larger than the " + format_bytes(stored) + " it stores can expand to: damaged or hostile file, refused before reading");
     }
+    // A filtered chunk is decoded in libhdf5's own buffer: deflate grows it by doubling from the stored size (the
+    // last one under twice the chunk) and, while it grows, the previous one is alive too; three chunks cover both.
+    // An unfiltered chunk larger than the chunk cache is read straight into the caller's buffer.
+    if (filters > 0) return checked_product(*chunk_bytes, 3).value_or(UINT64_MAX);
   }
+  return 0;
+}
+
+// The working memory check_dataset_storage returned, beside what the context's budget already holds (the
+// caller's buffer charged first): a small file whose one chunk decodes to a gigabyte is refused here.
+void require_working_memory(const ReadContext& context, std::uint64_t working_bytes, const std::string& where) {
+  if (working_bytes > 0) context.budget.require(working_bytes, where, "libhdf5's buffers to decode one compressed chunk");
 }
 
 // Walks the file's global heap collections once, before the first variable-length read (see global_heap_check.h).
@@ -293,20 +327,21 @@ Array<T> read_numeric(const Group& g, ReadContext& context, const std::string& n
   Handle type(H5Dget_type(set.id()));
   const H5T_class_t cls = H5Tget_class(type.id());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(g.where(name) + ": is not a numeric dataset");
+  check_number_layout(type.id(), g.where(name));
   const std::size_t element = H5Tget_size(type.id());
-  if (element == 0 || element > max_number_size) throw InputError(g.where(name) + ": has " + std::to_string(element) + "-byte numbers");
   Handle space(H5Dget_space(set.id()));
   const Extent e = extent_of(space.id(), g.where(name));
   const int rank = static_cast<int>(e.dims.size());
   if (expected_rank >= 0 && rank != expected_rank) {
     throw InputError(g.where(name) + ": has rank " + std::to_string(rank) + ", expected " + std::to_string(expected_rank));
   }
-  check_dataset_storage(set.id(), g.where(name), e, element, context);
+  const std::uint64_t working = check_dataset_storage(set.id(), g.where(name), e, element, context);
   Array<T> out;
   out.shape = e.dims;
-  if (!read_values) return out;
+  if (!read_values) return out;  // the working memory is checked when the values are read
   const auto bytes = checked_product(e.count, sizeof(T));
   context.budget.charge(bytes.value_or(UINT64_MAX), g.where(name), shape_text(e.dims) + " × " + std::to_string(sizeof(T)) + " bytes");
+  require_working_memory(context, working, g.where(name));
   out.values.resize(e.count);
   if (e.count > 0 && H5Dread(set.id(), memory_type, H5S_ALL, H5S_ALL, context.transfer.id(), out.values.data()) < 0) {
     throw InputError(g.where(name) + ": cannot read (" + hdf5_reason() +
@@ -334,13 +369,13 @@ std::vector<std::string> read_string_data(hid_t object, bool attribute, const st
     if (!bytes || (context.bounded && *bytes > context.file_size)) {
       throw InputError(where + ": declares " + shape_text(e.dims) + " strings, more than the file of " + format_bytes(context.file_size) + " holds");
     }
-  } else {
-    check_dataset_storage(object, where, e, size, context);
   }
+  const std::uint64_t working = attribute ? 0 : check_dataset_storage(object, where, e, size, context);
   if (variable) {
     check_heaps_once(object, context);
     const auto bytes = checked_sum(checked_product(e.count, sizeof(char*) + sizeof(std::string)).value_or(UINT64_MAX), context.heap_bytes);
     context.budget.charge(bytes.value_or(UINT64_MAX), where, shape_text(e.dims) + " strings");
+    require_working_memory(context, working, where);
     Handle memory = string_type();
     std::vector<char*> raw(static_cast<std::size_t>(e.count), nullptr);
     herr_t status = -1;
@@ -358,6 +393,7 @@ std::vector<std::string> read_string_data(hid_t object, bool attribute, const st
   } else {
     const auto bytes = checked_product(e.count, size);
     context.budget.charge(checked_product(bytes.value_or(UINT64_MAX), 2).value_or(UINT64_MAX), where, shape_text(e.dims) + " strings of " + std::to_string(size) + " bytes");
+    require_working_memory(context, working, where);
     std::vector<char> raw(static_cast<std::size_t>(*bytes), '\0');
     Handle memory(H5Tcopy(H5T_C_S1));
     H5Tset_size(memory.id(), size);
@@ -384,8 +420,8 @@ std::vector<T> read_number_attribute(const Group& g, ReadContext& context, const
   if (cls != H5T_INTEGER && (integers_only || cls != H5T_FLOAT)) {
     throw InputError(where + ": is not " + (integers_only ? "an integer" : "a number"));
   }
+  check_number_layout(type.id(), where);
   const std::size_t element = H5Tget_size(type.id());
-  if (element == 0 || element > max_number_size) throw InputError(where + ": has " + std::to_string(element) + "-byte numbers");
   Handle space(H5Aget_space(attr.id()));
   const Extent e = extent_of(space.id(), where);
   const auto file_bytes = checked_product(e.count, element);
@@ -436,6 +472,8 @@ Handle::~Handle() {
     default: break;
   }
 }
+
+MemoryBudget& Group::budget() const { return context_of(context_).budget; }
 
 std::string Group::where(const std::string& name) const {
   std::string p = path_;
@@ -566,18 +604,16 @@ Array<double> Group::read_compound_member(const std::string& name, const std::st
   Handle member_type(H5Tget_member_type(type.id(), static_cast<unsigned>(index)));
   const H5T_class_t cls = H5Tget_class(member_type.id());
   if (cls != H5T_INTEGER && cls != H5T_FLOAT) throw InputError(where(name) + ": member '" + member + "' is not numeric");
-  const std::size_t member_size = H5Tget_size(member_type.id());
-  if (member_size == 0 || member_size > max_number_size) {
-    throw InputError(where(name) + ": member '" + member + "' has " + std::to_string(member_size) + "-byte numbers");
-  }
+  check_number_layout(member_type.id(), where(name) + " member '" + member + "'");
   Handle space(H5Dget_space(set.id()));
   const Extent e = extent_of(space.id(), where(name));
   if (e.dims.size() != 1) throw InputError(where(name) + ": has rank " + std::to_string(e.dims.size()) + ", expected 1 (a table of rows)");
-  check_dataset_storage(set.id(), where(name), e, H5Tget_size(type.id()), context);
+  const std::uint64_t working = check_dataset_storage(set.id(), where(name), e, H5Tget_size(type.id()), context);
   Array<double> out;
   out.shape = e.dims;
   context.budget.charge(checked_product(e.count, sizeof(double)).value_or(UINT64_MAX), where(name) + " member " + member,
                         shape_text(e.dims) + " × 8 bytes");
+  require_working_memory(context, working, where(name));
   out.values.resize(e.count);
   Handle memory(H5Tcreate(H5T_COMPOUND, sizeof(double)));
   if (!memory.valid() || H5Tinsert(memory.id(), member.c_str(), 0, H5T_NATIVE_DOUBLE) < 0) {

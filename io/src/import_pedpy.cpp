@@ -94,7 +94,8 @@ ImportedCrowd read_pedpy(const std::filesystem::path& path, const ImportOptions&
   const bool has_z = std::find(members.begin(), members.end(), "z") != members.end();
   const auto zs = has_z ? root.read_compound_member("trajectory", "z") : h5::Array<double>{};
   const std::size_t count = frames.values.size();
-  MemoryBudget budget(limits);
+  // The rows and the motion built from them are charged to the file's budget, beside the columns still held.
+  MemoryBudget& budget = root.budget();
   budget.charge(checked_product(count, sizeof(TrackRow)).value_or(UINT64_MAX), source, std::to_string(count) + " rows");
   std::vector<TrackRow> rows;
   rows.reserve(count);

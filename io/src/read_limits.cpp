@@ -41,17 +41,26 @@ std::string format_bytes(std::uint64_t bytes) {
   return text;
 }
 
-void MemoryBudget::charge(std::uint64_t bytes, const std::string& what, const std::string& detail) {
-  const auto total = checked_sum(used_, bytes);
-  if (total && *total <= limit_) {
-    used_ = *total;
-    return;
-  }
+namespace {
+
+[[noreturn]] void refuse(std::uint64_t bytes, std::uint64_t used, std::uint64_t limit, const std::string& what, const std::string& detail) {
   std::string message = what + ": reading it needs about " + format_bytes(bytes);
   if (!detail.empty()) message += " (" + detail + ")";
-  if (used_ > 0) message += " on top of " + format_bytes(used_) + " already read";
-  message += ", more than the memory limit of " + format_bytes(limit_) + "; refused before reading";
+  if (used > 0) message += " on top of " + format_bytes(used) + " already read";
+  message += ", more than the memory limit of " + format_bytes(limit) + "; refused before reading";
   throw InputError(message);
+}
+
+}  // namespace
+
+void MemoryBudget::charge(std::uint64_t bytes, const std::string& what, const std::string& detail) {
+  require(bytes, what, detail);
+  used_ += bytes;
+}
+
+void MemoryBudget::require(std::uint64_t bytes, const std::string& what, const std::string& detail) const {
+  const auto total = checked_sum(used_, bytes);
+  if (!total || *total > limit_) refuse(bytes, used_, limit_, what, detail);
 }
 
 }  // namespace throng

@@ -162,6 +162,22 @@ def main(binary):
                                 dtype="f8", compression="gzip", fillvalue=np.nan)
         crowd("unallocated_1e4.h5", unallocated, "declares [10000][10000][3]")
 
+        # A valid HDF5 float that is not IEEE binary64 (23-bit exponent, 40-bit mantissa): throng reads numbers in
+        # standard layouts only, since libhdf5 1.10 smashed its stack converting a crafted one (see below).
+        def float_fields(path):
+            with h5py.File(path, "r+") as f:
+                p = "particles/trajectory/position/value"
+                data, attrs = f[p][...], dict(f[p].attrs)
+                del f[p]
+                tid = h5py.h5t.IEEE_F64LE.copy()
+                tid.set_fields(63, 40, 23, 0, 40)
+                tid.set_ebias(2**22 - 1)
+                ds = h5py.h5d.create(f["particles/trajectory/position"].id, b"value", tid, h5py.h5s.create_simple(data.shape))
+                ds.write(h5py.h5s.ALL, h5py.h5s.ALL, np.ascontiguousarray(data, dtype="f8"), mtype=h5py.h5t.NATIVE_DOUBLE)
+                for k, v in attrs.items():
+                    f[p].attrs[k] = v
+        crowd("float_nonstandard_fields.h5", float_fields, "in a layout throng does not read")
+
         # A tiling file whose limit_stretch holds 100 values overflowed the stack in check-tiling and plot.
         stretch = os.path.join(REPRO, "tiling_data", "limit_stretch_100.h5")
         shutil.copy(tiling, stretch)
@@ -193,6 +209,15 @@ def main(binary):
         with open(os.path.join(REPRO, "real_dataset", "frame_1e19.txt"), "w") as out:
             out.write("1e19 1 0 0 0 0 0 0\n")
         expected.append(("real_dataset/frame_1e19.txt", "import {dataset} -o {out}.h5", 3, "whole numbers"))
+
+        # Found by the fuzzers and kept as found (not made here): tiling files with an unordered fragment index, a
+        # variable-length string claiming 4 GB and a layout smaller than its shape; a PedPy table whose column lies
+        # past its row; a float type whose fields libhdf5 1.10 converted past a stack buffer (H5T__bit_get_d).
+        expected.append(("tiling_data/type_fragments_unordered.h5", "check-tiling {in}", 3, "type_fragments not increasing"))
+        expected.append(("tiling_data/vlen_length_4g.h5", "check-tiling {in}", 3, "memory allocation failed"))
+        expected.append(("tiling_data/layout_smaller_than_shape.h5", "check-tiling {in}", 3, "but its layout stores 4 bytes"))
+        expected.append(("import/compound_member_past_row.h5", "import {in} -o {out}.h5", 3, "of a 56-byte row"))
+        expected.append(("import/float_fields_past_word.h5", "import {in} -o {out}.h5", 3, "in a layout throng does not read"))
 
         with open(os.path.join(REPRO, "expected.tsv"), "w") as out:
             out.write("# input\tcommand ({in}: the input, {dataset}: a folder 'hotel' holding it as obsmat.txt, {out}: an output"

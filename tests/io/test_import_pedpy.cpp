@@ -121,3 +121,18 @@ TEST_CASE("crowd files import as they are, and HDF5 files of other layouts are r
   std::ofstream(dir / "cut.h5", std::ios::binary) << std::string("\x89HDF\r\n\x1a\n", 8) << "truncated";
   CHECK_THROWS_AS(import_crowd(dir / "cut.h5"), InputError);
 }
+
+TEST_CASE("a PedPy table's columns and the rows built from them share the file's one memory limit") {
+  // Each had a budget of its own, so a table of columns just under the limit could hold twice the limit.
+  const auto dir = test::scratch_dir("import_pedpy_limit");
+  const CrowdFile crowd = zara01_sample();
+  export_pedpy(crowd, dir / "zara.h5");
+  std::uint64_t rows = 0;
+  for (std::size_t t = 0; t < crowd.motion.frame_count(); ++t) {
+    for (std::size_t n = 0; n < crowd.motion.agent_count(); ++n) rows += crowd.motion.present(t, n) ? 1 : 0;
+  }
+  // Five columns (frame, id, x, y, z) of 8 bytes are read before the rows (40 bytes each) are built: 80 per row.
+  CHECK_THROWS_AS_WITH(import_crowd(dir / "zara.h5", {}, ReadLimits{80 * rows - 1}), InputError,
+                       Contains(std::to_string(rows) + " rows") && Contains(format_bytes(40 * rows) + " already read"));
+  CHECK(import_crowd(dir / "zara.h5", {}, ReadLimits{1 << 20}).crowd.motion.ids == crowd.motion.ids);
+}

@@ -7,6 +7,7 @@
 #include <throng/io/checked_numbers.h>
 #include <throng/io/crowd_file.h>
 #include <throng/io/csv.h>
+#include <throng/io/hdf5.h>
 #include <throng/io/read_limits.h>
 #include <throng/io/real_dataset.h>
 
@@ -50,6 +51,36 @@ TEST_CASE("a memory budget adds what is charged and refuses past its limit with 
   CHECK(budget.used() == 600);  // a refused charge leaves the budget as it was
   CHECK_NOTHROW(budget.charge(400, "last"));
   CHECK_THROWS_AS(budget.charge(std::numeric_limits<std::uint64_t>::max(), "overflow"), InputError);
+}
+
+TEST_CASE("working memory is checked beside what is charged without being charged") {
+  MemoryBudget budget(ReadLimits{1000});
+  budget.charge(600, "held");
+  CHECK_NOTHROW(budget.require(400, "one chunk"));
+  CHECK(budget.used() == 600);
+  CHECK_THROWS_AS_WITH(budget.require(401, "file.h5:/set", "one chunk"), InputError,
+                       Contains("file.h5:/set") && Contains("401 bytes") && Contains("600 bytes already read"));
+  CHECK_THROWS_AS(budget.require(std::numeric_limits<std::uint64_t>::max(), "overflow"), InputError);
+}
+
+TEST_CASE("a compressed chunk's decoding buffers count against the limit: one 24 MB chunk of zeros needs 96 MB") {
+  // The fuzzers' out-of-memory finding: a 1 MB file whose one deflated chunk decodes to nearly 1 GB passed the
+  // budget (which held the result only) while libhdf5 grew its own decoding buffer to twice the chunk.
+  const auto dir = test::scratch_dir("io_limits_chunk");
+  const std::uint64_t count = 3'000'000;  // 24 MB of doubles in one chunk, deflated to a few tens of KB
+  {
+    h5::File f = h5::File::create(dir / "bomb.h5");
+    f.root().write("zeros", std::vector<double>(count, 0.0), {count}, h5::Layout{true, count});
+    f.close();
+  }
+  REQUIRE(std::filesystem::file_size(dir / "bomb.h5") < 1'000'000);
+  {
+    const h5::File f = h5::File::open(dir / "bomb.h5", ReadLimits{80'000'000});  // the result alone would fit
+    CHECK_THROWS_AS_WITH(f.root().read_doubles("zeros", 1), InputError,
+                         Contains("bomb.h5:/zeros") && Contains("libhdf5's buffers") && Contains("72 MB") && Contains("already read"));
+  }
+  const h5::File f = h5::File::open(dir / "bomb.h5", ReadLimits{100'000'000});
+  CHECK(f.root().read_doubles("zeros", 1).values.size() == count);
 }
 
 TEST_CASE("the default limit is the machine's memory, lowered by the process's own limits") {

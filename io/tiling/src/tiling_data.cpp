@@ -221,6 +221,11 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   const CrowdFile crowd = read_crowd_file(path, limits);
   out.environment.scene = crowd.scene;
   const h5::File file = h5::File::open(path, limits);
+  // The crowd just read stays held while the tiling data is read: both within the one limit.
+  const CrowdMotion& m = crowd.motion;
+  const std::uint64_t crowd_bytes = 8 * (m.times.size() + m.positions.size() + m.ids.size() + m.radii.size() + m.velocities.size() +
+                                         m.orientations.size()) + 4 * (m.species.size() + m.actions.size());
+  file.root().budget().charge(crowd_bytes, path.string(), "the crowd read before the tiling data");
   const h5::Group params = open_throng_parameters(file);
   if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
   const h5::Group g = params.open_group("tiling");
@@ -261,8 +266,8 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   const std::vector<std::int64_t> constraints = ints(lib, "constraints", 5, &C);
   const std::size_t K = names.size();
   // The library built from the arrays (K types, F fragments, S samples of position, heading and time: 32 bytes),
-  // against the limit (the arrays themselves were charged to the file's budget as they were read).
-  MemoryBudget(limits).charge(checked_sum(checked_product(K, sizeof(PatchType)).value_or(UINT64_MAX),
+  // charged to the file's budget beside the arrays it is built from (charged as they were read).
+  lib.budget().charge(checked_sum(checked_product(K, sizeof(PatchType)).value_or(UINT64_MAX),
                          checked_sum(checked_product(F, sizeof(Fragment)).value_or(UINT64_MAX),
                                      checked_product(S, 32).value_or(UINT64_MAX)).value_or(UINT64_MAX))
                  .value_or(UINT64_MAX),
@@ -324,7 +329,7 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   const std::vector<std::int32_t> keyframed = inst.read_int32("keyframed", 1).values;
   const std::vector<double> paths = doubles(inst, "paths", 4, &P);
   if (type.size() != I || keyframed.size() != I) throw InputError(inst.where() + ": the instance datasets disagree in size");
-  MemoryBudget(limits).charge(checked_sum(checked_product(I, sizeof(Instance)).value_or(UINT64_MAX), checked_product(P, 32).value_or(UINT64_MAX))
+  inst.budget().charge(checked_sum(checked_product(I, sizeof(Instance)).value_or(UINT64_MAX), checked_product(P, 32).value_or(UINT64_MAX))
                   .value_or(UINT64_MAX),
               inst.where(), std::to_string(I) + " instances, " + std::to_string(P) + " path samples");
   std::size_t at = 0;

@@ -77,6 +77,10 @@ class Group {
   [[nodiscard]] const std::string& file() const noexcept { return file_; }
   /// "file.h5:/particles/trajectory/name", for messages.
   [[nodiscard]] std::string where(const std::string& name = {}) const;
+  /// The memory budget of the file this group belongs to (one per opened file): every array read through it is
+  /// charged there, and a reader charges what it builds from those arrays there too, so one limit bounds the
+  /// whole read.
+  [[nodiscard]] MemoryBudget& budget() const;
 
   [[nodiscard]] bool has(const std::string& name) const;
   /// True when `name` exists and is a group (not a dataset).

@@ -31,6 +31,10 @@ class MemoryBudget {
   /// estimate, what it is made of (`detail`, e.g. "12000 frames × 800 agents × 48 bytes") and the limit.
   void charge(std::uint64_t bytes, const std::string& what, const std::string& detail = {});
 
+  /// Checks that `bytes` of working memory for `what` (held only while one step runs, e.g. libhdf5's buffers for
+  /// one compressed chunk) fit beside what is already charged, without charging them; throws as charge() does.
+  void require(std::uint64_t bytes, const std::string& what, const std::string& detail = {}) const;
+
   [[nodiscard]] std::uint64_t used() const noexcept { return used_; }
   [[nodiscard]] std::uint64_t limit() const noexcept { return limit_; }
 
