@@ -216,7 +216,7 @@ void check_number_layout(hid_t type, const std::string& where) {
 // bytes (`file_bytes`) within what the storage can expand to. Throws InputError naming the dataset. Returns the
 // working memory libhdf5 needs besides the caller's buffer to read it (require_working_memory checks it).
 std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const Extent& e, std::uint64_t file_element_size,
-                           const ReadContext& context) {
+                                    const ReadContext& context) {
   const Handle dcpl(H5Dget_create_plist(set));
   if (!dcpl.valid()) throw InputError(where + ": cannot read its storage properties (damaged file?)");
   const H5D_layout_t layout = H5Pget_layout(dcpl.id());

@@ -268,10 +268,10 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   // The library built from the arrays (K types, F fragments, S samples of position, heading and time: 32 bytes),
   // charged to the file's budget beside the arrays it is built from (charged as they were read).
   lib.budget().charge(checked_sum(checked_product(K, sizeof(PatchType)).value_or(UINT64_MAX),
-                         checked_sum(checked_product(F, sizeof(Fragment)).value_or(UINT64_MAX),
-                                     checked_product(S, 32).value_or(UINT64_MAX)).value_or(UINT64_MAX))
-                 .value_or(UINT64_MAX),
-             lib.where(), std::to_string(K) + " patch types, " + std::to_string(F) + " fragments, " + std::to_string(S) + " samples");
+                                  checked_sum(checked_product(F, sizeof(Fragment)).value_or(UINT64_MAX),
+                                              checked_product(S, 32).value_or(UINT64_MAX)).value_or(UINT64_MAX))
+                          .value_or(UINT64_MAX),
+                      lib.where(), std::to_string(K) + " patch types, " + std::to_string(F) + " fragments, " + std::to_string(S) + " samples");
   if (labels.size() != K || preference.size() != K || type_fragments.size() != K + 1 || radius.size() != F ||
       type_fragments.back() != static_cast<std::int64_t>(F)) {
     throw InputError(lib.where() + ": the library's datasets disagree in size");
@@ -330,8 +330,8 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   const std::vector<double> paths = doubles(inst, "paths", 4, &P);
   if (type.size() != I || keyframed.size() != I) throw InputError(inst.where() + ": the instance datasets disagree in size");
   inst.budget().charge(checked_sum(checked_product(I, sizeof(Instance)).value_or(UINT64_MAX), checked_product(P, 32).value_or(UINT64_MAX))
-                  .value_or(UINT64_MAX),
-              inst.where(), std::to_string(I) + " instances, " + std::to_string(P) + " path samples");
+                           .value_or(UINT64_MAX),
+                       inst.where(), std::to_string(I) + " instances, " + std::to_string(P) + " path samples");
   std::size_t at = 0;
   for (std::size_t i = 0; i < I; ++i) {
     Instance x;
