@@ -132,7 +132,9 @@ CrowdMotion resample_crowd(const CrowdMotion& crowd, const std::vector<double>& 
       }
     }
     const CubicSpline spline(knot_times, std::move(values), end);
-    const auto [begin, stop] = times_within(times, knot_times.front() - end_slack_s, knot_times.back() + end_slack_s, slack);
+    // Named, not a structured binding: clang 14 (the asan preset) cannot capture a binding in a lambda.
+    const auto within = times_within(times, knot_times.front() - end_slack_s, knot_times.back() + end_slack_s, slack);
+    const std::size_t begin = within.first, stop = within.second;
     parallel_for(stop - begin, 16, [&](std::size_t b, std::size_t e) {
       write_samples(spline, whole, times, begin + b, begin + e, with_velocities, out);
     });
