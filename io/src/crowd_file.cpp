@@ -314,17 +314,17 @@ void apply_periodic_box(const PeriodicBox& box, const h5::Group& trajectory, con
   scene.region = r;
 }
 
-// The crowd's arrays, from the shapes alone, against the limit: positions (24 bytes per frame and agent),
-// per-frame ids (8) and velocities (24) when present, per-agent ids, radii and species. InputError (exit 3) with
-// the estimate before anything large is read.
-void check_crowd_memory(const h5::Group& trajectory, std::uint64_t T, std::uint64_t N, const ReadLimits& limits) {
+// The crowd's arrays, from the shapes alone, against what the file's budget has left: positions (24 bytes per
+// frame and agent), per-frame ids (8) and velocities (24) when present, per-agent ids, radii and species.
+// InputError (exit 3) with the estimate before anything large is read; the reads then charge what they read.
+void check_crowd_memory(const h5::Group& trajectory, std::uint64_t T, std::uint64_t N) {
   std::uint64_t per_entry = 24;
   if (trajectory.has("id/value")) per_entry += 8;
   if (trajectory.has("velocity/value")) per_entry += 24;
   const auto entries = checked_product(T, N);
   const auto bytes = entries ? checked_product(*entries, per_entry) : std::nullopt;
   const auto total = bytes ? checked_sum(*bytes, checked_product(N, 20).value_or(UINT64_MAX)) : std::nullopt;
-  MemoryBudget(limits).charge(total.value_or(UINT64_MAX), trajectory.where("position/value"),
+  trajectory.budget().require(total.value_or(UINT64_MAX), trajectory.where("position/value"),
                               std::to_string(T) + " frames × " + std::to_string(N) + " agents × " + std::to_string(per_entry) +
                                   " bytes");
 }
@@ -400,7 +400,10 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 h5::Group open_throng_parameters(const h5::File& file) { return file.root().open_group("parameters/throng"); }
 
 CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits) {
-  const h5::File f = h5::File::open(path, limits);
+  return read_crowd_file(h5::File::open(path, limits));
+}
+
+CrowdFile read_crowd_file(const h5::File& f) {
   const h5::Group root = f.root();
   CrowdFile out;
   CrowdMotion& m = out.motion;
@@ -428,7 +431,7 @@ CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& l
                      std::to_string(shape[1]) + "][" + std::to_string(shape[2]) + "], expected [frames][agents][3]");
   }
   const std::uint64_t T = shape[0], N = shape[1];
-  check_crowd_memory(trajectory, T, N, limits);
+  check_crowd_memory(trajectory, T, N);
   auto position = trajectory.read_doubles("position/value", 3);
   auto time = trajectory.read_doubles("position/time", 1);
   if (time.shape[0] != T) {
@@ -547,7 +550,7 @@ CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& l
     apply_periodic_box(*box, trajectory, m, out.scene);
     out.scene.validate(trajectory.where("box"));
   }
-  m.validate(path.filename().string());
+  m.validate(root.file());
   return out;
 }
 

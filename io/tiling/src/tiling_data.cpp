@@ -218,14 +218,10 @@ bool has_tiling_data(const std::filesystem::path& path, const ReadLimits& limits
 
 TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits& limits) {
   TilingData out;
-  const CrowdFile crowd = read_crowd_file(path, limits);
-  out.environment.scene = crowd.scene;
+  // One file, one budget: the crowd stays held while the tiling data is read, both within the limit.
   const h5::File file = h5::File::open(path, limits);
-  // The crowd just read stays held while the tiling data is read: both within the one limit.
-  const CrowdMotion& m = crowd.motion;
-  const std::uint64_t crowd_bytes = 8 * (m.times.size() + m.positions.size() + m.ids.size() + m.radii.size() + m.velocities.size() +
-                                         m.orientations.size()) + 4 * (m.species.size() + m.actions.size());
-  file.root().budget().charge(crowd_bytes, path.string(), "the crowd read before the tiling data");
+  const CrowdFile crowd = read_crowd_file(file);
+  out.environment.scene = crowd.scene;
   const h5::Group params = open_throng_parameters(file);
   if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
   const h5::Group g = params.open_group("tiling");

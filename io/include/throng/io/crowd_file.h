@@ -80,6 +80,9 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
 /// positions, ids and velocities) is estimated from the datasets' shapes and refused with the estimate when it
 /// exceeds `limits`; every dataset is then checked against the file's size and charged as it is read.
 [[nodiscard]] CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits = {});
+/// The same from a file already open for reading, within its one budget: a reader of a file that holds more than
+/// the crowd (tiling data) reads the crowd and the rest under one limit.
+[[nodiscard]] CrowdFile read_crowd_file(const h5::File& file);
 
 /// Opens a crowd file's /parameters/throng group for method data, with `h5::File` kept alive by the caller.
 [[nodiscard]] h5::Group open_throng_parameters(const h5::File& file);
