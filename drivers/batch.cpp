@@ -2,7 +2,10 @@
 #include "rank_outcome.h"
 
 #include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
 #include <throng/linalg/mpi.h>
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -32,6 +35,29 @@ JobOutcome from_json(const nlohmann::json& j) {
   return o;
 }
 
+// What this rank prints if a signal ends the batch while job `running` (an index into `mine`) is under way: its
+// finished jobs as the summary has them, the running one "interrupted", the rest "not run", and how to continue.
+std::string interrupt_summary(const std::vector<fs::path>& jobs, const std::vector<std::size_t>& mine, std::size_t running,
+                              const nlohmann::json& finished, const Context& context) {
+  Report r;
+  std::size_t ok = 0;
+  for (const auto& j : finished) ok += j.at("status") == "ok";
+  r["interrupted"] = true;
+  r["rank"] = mpi::rank();
+  r["jobs"] = mine.size();
+  r["succeeded"] = ok;
+  r["failed"] = finished.size() - ok;
+  r["not_finished"] = mine.size() - finished.size();
+  nlohmann::json list = finished;
+  for (std::size_t n = running; n < mine.size(); ++n) {
+    list.push_back({{"index", mine[n]}, {"job", jobs[mine[n]].string()}, {"rank", mpi::rank()},
+                    {"status", n == running ? "interrupted" : "not run"}});
+  }
+  r["results"] = std::move(list);
+  r["continue"] = "run the same command with --resume: finished jobs and steps are not run again";
+  return context.render(r);
+}
+
 }  // namespace
 
 std::vector<fs::path> expand_jobs(const std::vector<fs::path>& paths) {
@@ -58,7 +84,7 @@ std::vector<fs::path> expand_jobs(const std::vector<fs::path>& paths) {
 }
 
 std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::function<Report(const fs::path&)>& run_job,
-                                  Context& context) {
+                                  Context& context, int summary_fd) {
   mpi::use_ranks_independently();
   const int me = mpi::rank(), ranks = mpi::size();
   std::vector<std::size_t> mine;
@@ -71,6 +97,8 @@ std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::
     JobOutcome o;
     o.job = jobs[k].string();
     o.rank = me;
+    set_interrupt_note(me == 0 ? summary_fd : 2, interrupt_summary(jobs, mine, n, local, context));
+    context.info(label + ": running on rank " + std::to_string(me) + " (pid " + std::to_string(::getpid()) + ")");
     const auto start = std::chrono::steady_clock::now();
     try {
       Context::ProgressScope scope(context, static_cast<double>(n) / static_cast<double>(mine.size()),
@@ -90,6 +118,7 @@ std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::
     }
     local.push_back(to_json(o, k));
   }
+  set_interrupt_note(-1, "");
 
   // Every rank's outcomes to rank 0, merged in job order, then back to every rank.
   const std::vector<std::byte> mine_bytes = bytes_of(local.dump());

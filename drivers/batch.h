@@ -9,6 +9,8 @@
 //    use_ranks_independently): ranks never wait for each other until the summary is gathered.
 //  * Summary (rank 0, stdout; JSON with --json): jobs, succeeded, failed, ranks, and per job its path, rank,
 //    status (ok | failed), exit code, error message, seconds and the pipeline's report.
+//  * Interrupted (killed, or ended by a signal): `throng run --resume` with the same jobs skips the jobs that
+//    finished and resumes the others after their last step done (drivers/checkpoint.h).
 //  * Exit: 0 when every job succeeded; otherwise the exit code of the first failed job in job order (2 config,
 //    3 input, 4 I/O, 5 numerical, 70 internal), on every rank.
 #pragma once
@@ -40,9 +42,12 @@ struct JobOutcome {
 
 /// Runs this rank's share of `jobs` through `run_job` (which runs one pipeline and returns its report, or
 /// throws), then gathers every rank's outcomes: returns all jobs' outcomes in job order, on every rank.
+/// While a job runs, a terminating signal (SIGTERM from a scheduler, Ctrl-C) ends the program with this rank's
+/// summary so far (its finished jobs, the one interrupted, those not run) on `summary_fd` (rank 0) or stderr (the
+/// other ranks) and exit code 128 + the signal; each job logs the rank and pid running it.
 [[nodiscard]] std::vector<JobOutcome> run_batch(const std::vector<std::filesystem::path>& jobs,
                                                 const std::function<Report(const std::filesystem::path&)>& run_job,
-                                                Context& context);
+                                                Context& context, int summary_fd);
 
 /// Prints the summary on rank 0 and, when a job failed, throws the first failed job's error type with a message
 /// listing the failed jobs and why (on every rank, so every rank exits with the same code).

@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <iostream>
+#include <sstream>
+#include <string_view>
+#include <utility>
 #include <unistd.h>
 
 #ifndef THRONG_VERSION
@@ -31,31 +34,48 @@ std::string shell_quote(const std::string& s) {
 }
 
 // "key: value" lines for a human; nested objects indent, arrays of scalars stay on one line.
-void print_human(const Report& value, int indent) {
+void print_human(std::ostream& out, const Report& value, int indent) {
   const std::string pad(static_cast<std::size_t>(indent), ' ');
   for (auto it = value.begin(); it != value.end(); ++it) {
     const Report& v = it.value();
     if (v.is_object()) {
-      std::cout << pad << it.key() << ":\n";
-      print_human(v, indent + 2);
+      out << pad << it.key() << ":\n";
+      print_human(out, v, indent + 2);
     } else if (v.is_array() && !v.empty() && v.front().is_object()) {
-      std::cout << pad << it.key() << ":\n";
+      out << pad << it.key() << ":\n";
       for (const auto& e : v) {
-        std::cout << pad << "  -\n";
-        print_human(e, indent + 4);
+        out << pad << "  -\n";
+        print_human(out, e, indent + 4);
       }
     } else if (v.is_string()) {
-      std::cout << pad << it.key() << ": " << v.get<std::string>() << "\n";
+      out << pad << it.key() << ": " << v.get<std::string>() << "\n";
     } else {
-      std::cout << pad << it.key() << ": " << v.dump() << "\n";
+      out << pad << it.key() << ": " << v.dump() << "\n";
     }
   }
 }
 
 }  // namespace
 
+// Flags that only steer how a run proceeds, never what it computes: left out of the command line that outputs
+// record, so a run resumed with `throng run --resume` writes the same bits as one never interrupted.
+// (flag, takes a separate value)
+constexpr std::pair<std::string_view, bool> steering_flags[] = {{"--resume", false}, {"--checkpoint-dir", true}};
+
 Context::Context(int argc, char** argv, Process& process) : process_(process) {
-  for (int i = 0; i < argc; ++i) command_line_ += (i ? " " : "") + shell_quote(argv[i]);
+  for (int i = 0; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    bool steering = false;
+    for (const auto& [flag, takes_value] : steering_flags) {
+      if (arg == flag) {
+        steering = true;
+        if (takes_value) ++i;
+      } else if (takes_value && arg.substr(0, flag.size() + 1) == std::string(flag) + "=") {
+        steering = true;
+      }
+    }
+    if (!steering) command_line_ += (command_line_.empty() ? "" : " ") + shell_quote(argv[i]);
+  }
 }
 
 Context::~Context() = default;
@@ -126,9 +146,15 @@ bool Context::print_config_if_asked(const YAML::Node& effective_options) const {
   return true;
 }
 
+std::string Context::render(const Report& report) const {
+  std::ostringstream out;
+  if (global.json) out << report.dump(2) << "\n";
+  else print_human(out, report, 0);
+  return out.str();
+}
+
 void Context::print(const Report& report) const {
-  if (global.json) std::cout << report.dump(2) << "\n";
-  else print_human(report, 0);
+  std::cout << render(report);
   std::cout.flush();
 }
 

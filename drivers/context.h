@@ -49,7 +49,8 @@ class Context {
   /// True on the rank that writes outputs and prints reports (rank 0; the only one without mpiexec).
   [[nodiscard]] bool writer() const { return process_.world_rank() == 0; }
 
-  /// The full command line, shell-quoted, for provenance.
+  /// The full command line, shell-quoted, for provenance: without the flags that only steer how a run proceeds
+  /// (run's --resume and --checkpoint-dir), so a resumed run records what an uninterrupted one does.
   [[nodiscard]] const std::string& command_line() const noexcept { return command_line_; }
   /// Where solvers report progress (a bar on a terminal, PROGRESS lines on a pipe, nothing with --quiet).
   /// Inside a pipeline step, a view that maps the step's fraction into the whole run's.
@@ -105,6 +106,8 @@ class Context {
 
   /// Prints a report on stdout (as JSON with --json).
   void print(const Report& report) const;
+  /// The text print() writes for `report`.
+  [[nodiscard]] std::string render(const Report& report) const;
   /// Logs on stderr unless --quiet.
   void info(const std::string& message) const;
   void warn(const std::string& message) const;

@@ -1,5 +1,6 @@
 #include "pipeline.h"
 
+#include "checkpoint.h"
 #include "rank_outcome.h"
 
 #include <throng/core/errors.h>
@@ -8,6 +9,8 @@
 #include <cstdio>
 #include <exception>
 #include <fcntl.h>
+#include <fstream>
+#include <sstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -113,6 +116,52 @@ void check_output_is_not_an_input(const ConfigNode& step) {
   }
 }
 
+// For each step that makes a crowd: whether a later step reads it, by its name or as the last crowd made (a later
+// step that names no input and reads crowds, with no crowd made in between). Only those a checkpoint keeps.
+std::vector<bool> read_later(const std::vector<ConfigNode>& steps, const std::vector<Command*>& commands) {
+  auto names_input = [](const ConfigNode& step, const std::string& name) {
+    if (auto in = step.find("input"); in && in->as_string() == name) return true;
+    if (auto ins = step.find("inputs")) {
+      for (const auto& in : ins->elements()) {
+        if (in.as_string() == name) return true;
+      }
+    }
+    return false;
+  };
+  std::vector<bool> read(steps.size(), false);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const auto n = steps[i].find("name");
+    const std::string name = n ? n->as_string() : "";
+    bool is_last = true, name_bound = !name.empty();
+    for (std::size_t j = i + 1; j < steps.size() && !read[i] && (is_last || name_bound); ++j) {
+      const ConfigNode& later = steps[j];
+      const Command* command = find(commands, later.at("step").as_string());
+      if (name_bound && names_input(later, name)) read[i] = true;
+      if (is_last && command->reads_crowds() && !later.has("input") && !later.has("inputs")) read[i] = true;
+      if (command->makes_crowd()) {
+        is_last = false;
+        if (auto m = later.find("name"); m && m->as_string() == name) name_bound = false;
+      }
+    }
+  }
+  return read;
+}
+
+// What a checkpoint of this pipeline must agree with to be resumed (drivers/checkpoint.h): the program, the job
+// as loaded (with --set), the seed, and every step's job file as it is now.
+std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>& steps, const Context& context) {
+  std::string text = std::string(THRONG_VERSION) + '\0' + to_yaml_text(job.yaml()) + '\0' + std::to_string(context.global.seed);
+  for (const ConfigNode& step : steps) {
+    const auto j = step.find("job");
+    if (!j) continue;
+    std::ifstream in(j->as_path(), std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    text += '\0' + j->as_path().string() + '\0' + bytes.str();
+  }
+  return stable_hash(text);
+}
+
 }  // namespace
 
 StdoutRedirect::StdoutRedirect(int target) {
@@ -145,7 +194,7 @@ std::vector<std::filesystem::path> named_outputs(const ConfigNode& job) {
 }
 
 std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const std::vector<Command*>& commands,
-                                   Context& context, bool collective) {
+                                   Context& context, bool collective, const CheckpointOptions& checkpoints) {
   const bool writer = !collective || context.writer();
   const ConfigNode job = context.load_job(job_path);
   if (context.print_config_if_asked(job.yaml())) return std::nullopt;
@@ -162,10 +211,27 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
   std::map<std::string, CrowdFile> named;  // results of named steps and crowds read from files
   std::optional<CrowdFile> last;           // the last crowd made
   std::size_t written = 0;
-  for (std::size_t i = 0; i < steps.size(); ++i) {
+  std::size_t first = 0;
+  // A pipeline run by every rank is checkpointed by rank 0; each job of a batch by the rank that runs it, which
+  // keeps the finished job's record until the batch has succeeded.
+  const bool in_batch = !collective;
+  PipelineCheckpoint checkpoint(checkpoints, job_path, fingerprint_of(job, steps, context), steps.size(), writer, context);
+  const std::vector<bool> crowd_read_later = read_later(steps, commands);
+  if (auto restored = checkpoint.restore()) {
+    if (restored->report) {
+      checkpoint.completed(*restored->report, in_batch);
+      return restored->report;
+    }
+    named = std::move(restored->named);
+    last = std::move(restored->last);
+    written = restored->written;
+    first = restored->done;
+  }
+  for (std::size_t i = first; i < steps.size(); ++i) {
     const ConfigNode& step = steps[i];
     Command* command = find(commands, step.at("step").as_string());
     const std::string label = "step " + std::to_string(i + 1) + "/" + std::to_string(steps.size()) + " " + command->name();
+    checkpoint.starting(i);
     std::optional<StepResult> result;
     std::vector<const CrowdFile*> inputs;
     {
@@ -183,8 +249,13 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
         throw_as(e.exit_code(), label + ": " + e.what());
       }
     }
-    if (!result) continue;
-    if (const auto o = step.find("output"); o && writer) {
+    if (!result) {
+      checkpoint.finished(i, nullptr, "", written, {}, false);
+      continue;
+    }
+    if (step.has("output")) ++written;
+    const auto o = step.find("output");
+    if (o && writer) {
       // Credits of everything the crowd derives from are kept; the options are the whole pipeline's.
       std::vector<std::string> credits;
       for (const CrowdFile* c : inputs) credits.insert(credits.end(), c->provenance.credits.begin(), c->provenance.credits.end());
@@ -193,14 +264,17 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
       write_crowd_file(o->as_string(), result->crowd, result->extra);
       context.info(label + ": wrote " + o->as_string());
     }
-    if (step.has("output")) ++written;
-    if (auto n = step.find("name")) named.insert_or_assign(n->as_string(), result->crowd);
+    const auto n = step.find("name");
+    checkpoint.finished(i, &result->crowd, n ? n->as_string() : "", written, o ? std::filesystem::path(o->as_string()) : std::filesystem::path(),
+                        crowd_read_later[i]);
+    if (n) named.insert_or_assign(n->as_string(), result->crowd);
     last = std::move(result->crowd);
   }
   Report r;
   r["job"] = job_path.string();
   r["steps"] = steps.size();
   r["crowd_files_written"] = written;
+  checkpoint.completed(r, in_batch);
   return r;
 }
 

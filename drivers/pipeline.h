@@ -22,7 +22,8 @@
 // a step's keys (an import's dataset, a formation's from_crowd.file, a tiling's library.real.dataset), resolve
 // against the folder of the file that names them (the pipeline's, or the step's job file); `output` against the
 // working directory. A failing step stops the run; files already written by earlier steps stay (each is
-// complete: files are written atomically), the failing step leaves nothing.
+// complete: files are written atomically), the failing step leaves nothing; `throng run --resume` continues after
+// the last step done (drivers/checkpoint.h).
 //
 // A step input that is neither an earlier step's name nor an existing file is an I/O error (exit 4, as for
 // `throng edit missing.h5`); every error of a step, reading its inputs and job file included, is labelled
@@ -35,6 +36,7 @@
 // rank with the same exit code.
 #pragma once
 
+#include "checkpoint.h"
 #include "command.h"
 
 #include <filesystem>
@@ -46,9 +48,10 @@ namespace throng::cli {
 /// Runs the pipeline `job_path` with `commands` as its steps and returns its report (nullopt after
 /// --print-config). `collective`: every rank runs this pipeline (one job under mpiexec), so crowd files are
 /// written by rank 0 only and the steps that write their own files run on rank 0 only; otherwise (a batch: each
-/// rank its own jobs) this rank writes everything.
+/// rank its own jobs) this rank writes everything. Checkpointed after every step (drivers/checkpoint.h): with
+/// `checkpoints.resume` it continues from its checkpoint; one that every step of was done returns its report.
 [[nodiscard]] std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const std::vector<Command*>& commands,
-                                                 Context& context, bool collective);
+                                                 Context& context, bool collective, const CheckpointOptions& checkpoints);
 
 /// The outputs a job's steps name (crowd files and pictures), as absolute normal paths.
 [[nodiscard]] std::vector<std::filesystem::path> named_outputs(const ConfigNode& job);

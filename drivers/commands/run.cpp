@@ -6,14 +6,19 @@
 // same output file are refused (exit 2). While the jobs run, whatever their steps print (an info step's report)
 // goes to stderr, so stdout holds the summary alone (one JSON document with --json); the summary and the final
 // "N of M jobs failed" come from rank 0 only.
+//
+// Interrupted runs: every pipeline is checkpointed after each step (drivers/checkpoint.h); `--resume` continues
+// from there (a batch skips its finished jobs), `--checkpoint-dir` says where the checkpoints live.
 #include "../batch.h"
 #include "../pipeline.h"
 #include "factories.h"
 
 #include <throng/core/errors.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
+#include <unistd.h>
 
 namespace throng::cli {
 namespace {
@@ -27,6 +32,10 @@ class RunCommand final : public Command {
 
   void setup(CLI::App& app) override {
     app.add_option("job", job_paths_, "Pipeline job (.yaml); several jobs or folders of them run as a batch over the MPI ranks")->required();
+    app.add_flag("--resume", checkpoints_.resume,
+                 "Continue an interrupted run from its checkpoint: finished steps and jobs are not run again");
+    app.add_option("--checkpoint-dir", checkpoints_.folder, "Where runs keep their checkpoints")
+        ->default_str(checkpoints_.folder.string());
   }
 
   void run(Context& context) override {
@@ -34,7 +43,7 @@ class RunCommand final : public Command {
       // One pipeline: under mpiexec every rank runs it (collective solves), rank 0 writes and prints.
       std::optional<StdoutRedirect> silent;
       if (!context.writer()) silent.emplace(-1);
-      if (auto report = run_pipeline(job_paths_.front(), commands_, context, true)) context.print(*report);
+      if (auto report = run_pipeline(job_paths_.front(), commands_, context, true, checkpoints_)) context.print(*report);
       return;
     }
     // A batch: every rank sees the same jobs and the same errors; only rank 0 reports an error that ends it.
@@ -45,10 +54,17 @@ class RunCommand final : public Command {
       refuse_shared_outputs(jobs, context);
       std::vector<JobOutcome> outcomes;
       {
+        const int summary_fd = ::dup(1);  // stdout itself: the summary of a batch ended by a signal goes there
         const StdoutRedirect to_stderr(2);
-        outcomes = run_batch(jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, commands_, context, false); },
-                             context);
+        outcomes = run_batch(
+            jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, commands_, context, false, checkpoints_); },
+            context, summary_fd);
+        if (summary_fd >= 0) ::close(summary_fd);
       }
+      // A batch that succeeded has nothing left to resume; one with a failed job keeps every record, so that
+      // --resume runs the failed jobs alone.
+      const bool all_ok = std::all_of(outcomes.begin(), outcomes.end(), [](const JobOutcome& o) { return o.ok; });
+      if (all_ok && context.writer()) remove_checkpoints(checkpoints_, jobs);
       finish_batch(outcomes, context);
     } catch (...) {
       if (!context.writer()) (void)std::freopen("/dev/null", "w", stderr);  // rank 0 says it once
@@ -80,6 +96,7 @@ class RunCommand final : public Command {
 
   std::vector<Command*> commands_;
   std::vector<std::filesystem::path> job_paths_;
+  CheckpointOptions checkpoints_;
 };
 
 }  // namespace

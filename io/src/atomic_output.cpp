@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <deque>
+#include <mutex>
 #include <string>
 
 namespace throng {
@@ -49,10 +51,28 @@ void release(int slot) {
   if (slot >= 0) pending[static_cast<std::size_t>(slot)].state.store(slot_free);
 }
 
+// What the handler prints before it exits (set_interrupt_note): immutable once published, replaced whole.
+struct Note {
+  int fd;
+  std::string text;
+};
+std::atomic<const Note*> interrupt_note{nullptr};
+
+void write_all(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+}
+
 extern "C" void remove_pending_and_exit(int signal) {
   for (auto& slot : pending) {
     if (slot.state.load() == slot_published) ::unlink(slot.path);
   }
+  if (const Note* note = interrupt_note.load()) write_all(note->fd, note->text.data(), note->text.size());
   ::_exit(128 + signal);
 }
 
@@ -193,6 +213,20 @@ void install_interrupt_cleanup() {
     sigfillset(&action.sa_mask);  // one cleanup at a time
     ::sigaction(s, &action, nullptr);
   }
+}
+
+void set_interrupt_note(int fd, std::string text) {
+  // Notes are small and replaced a few times per job: each is kept for the life of the program (a deque does not
+  // move its elements) so the handler never reads one being destroyed.
+  static std::mutex guard;
+  static std::deque<Note> kept;
+  if (text.empty()) {
+    interrupt_note.store(nullptr);
+    return;
+  }
+  const std::lock_guard lock(guard);
+  kept.push_back(Note{fd, std::move(text)});
+  interrupt_note.store(&kept.back());
 }
 
 void check_distinct(const std::filesystem::path& input, const std::filesystem::path& output) {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 namespace throng {
@@ -64,6 +65,11 @@ class AtomicOutput {
 /// started (`nohup` ignores SIGHUP) stays ignored. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL) are left to the
 /// sanitizers and the system. Safe to call more than once.
 void install_interrupt_cleanup();
+
+/// What the handlers of install_interrupt_cleanup() write to descriptor `fd` after removing the pending outputs and
+/// before exiting (a batch's summary so far); an empty text writes nothing. Replaces the previous note. The text
+/// is prepared here, ahead of any signal: the handler only calls write(), which is async-signal-safe.
+void set_interrupt_note(int fd, std::string text);
 
 /// Throws ConfigError when `output` names the same file as `input` (an input is never overwritten).
 void check_distinct(const std::filesystem::path& input, const std::filesystem::path& output);
