@@ -119,19 +119,21 @@ void check_output_is_not_an_input(const ConfigNode& step) {
 // For each step that makes a crowd: whether a later step reads it, by its name or as the last crowd made (a later
 // step that names no input and reads crowds, with no crowd made in between). Only those a checkpoint keeps.
 std::vector<bool> read_later(const std::vector<ConfigNode>& steps, const std::vector<Command*>& commands) {
+  // Read from the YAML itself: a malformed input is the step's error, reported (with its step) when it runs.
   auto names_input = [](const ConfigNode& step, const std::string& name) {
-    if (auto in = step.find("input"); in && in->as_string() == name) return true;
-    if (auto ins = step.find("inputs")) {
-      for (const auto& in : ins->elements()) {
-        if (in.as_string() == name) return true;
+    const YAML::Node in = step.yaml()["input"], ins = step.yaml()["inputs"];
+    if (in && in.IsScalar() && in.Scalar() == name) return true;
+    if (ins && ins.IsSequence()) {
+      for (const YAML::Node& e : ins) {
+        if (e.IsScalar() && e.Scalar() == name) return true;
       }
     }
     return false;
   };
   std::vector<bool> read(steps.size(), false);
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const auto n = steps[i].find("name");
-    const std::string name = n ? n->as_string() : "";
+    const YAML::Node n = steps[i].yaml()["name"];
+    const std::string name = n && n.IsScalar() ? n.Scalar() : "";
     bool is_last = true, name_bound = !name.empty();
     for (std::size_t j = i + 1; j < steps.size() && !read[i] && (is_last || name_bound); ++j) {
       const ConfigNode& later = steps[j];
@@ -140,7 +142,7 @@ std::vector<bool> read_later(const std::vector<ConfigNode>& steps, const std::ve
       if (is_last && command->reads_crowds() && !later.has("input") && !later.has("inputs")) read[i] = true;
       if (command->makes_crowd()) {
         is_last = false;
-        if (auto m = later.find("name"); m && m->as_string() == name) name_bound = false;
+        if (const YAML::Node m = later.yaml()["name"]; m && m.IsScalar() && m.Scalar() == name) name_bound = false;
       }
     }
   }
@@ -153,7 +155,7 @@ std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>&
   std::string text = std::string(THRONG_VERSION) + '\0' + to_yaml_text(job.yaml()) + '\0' + std::to_string(context.global.seed);
   for (const ConfigNode& step : steps) {
     const auto j = step.find("job");
-    if (!j) continue;
+    if (!j || !j->yaml().IsScalar()) continue;  // a malformed one is the step's error when it runs
     std::ifstream in(j->as_path(), std::ios::binary);
     std::ostringstream bytes;
     bytes << in.rdbuf();

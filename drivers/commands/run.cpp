@@ -14,10 +14,12 @@
 #include "factories.h"
 
 #include <throng/core/errors.h>
+#include <throng/io/atomic_output.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <unistd.h>
 
 namespace throng::cli {
@@ -54,12 +56,16 @@ class RunCommand final : public Command {
       refuse_shared_outputs(jobs, context);
       std::vector<JobOutcome> outcomes;
       {
-        const int summary_fd = ::dup(1);  // stdout itself: the summary of a batch ended by a signal goes there
+        // stdout itself: the summary of a batch ended by a signal goes there (closed when the batch ends).
+        const std::unique_ptr<int, void (*)(int*)> summary_fd(new int(::dup(1)), [](int* fd) {
+          set_interrupt_note(-1, "");  // no note may point at the descriptor once it is closed
+          if (*fd >= 0) ::close(*fd);
+          delete fd;
+        });
         const StdoutRedirect to_stderr(2);
         outcomes = run_batch(
             jobs, [&](const std::filesystem::path& path) { return *run_pipeline(path, commands_, context, false, checkpoints_); },
-            context, summary_fd);
-        if (summary_fd >= 0) ::close(summary_fd);
+            context, *summary_fd);
       }
       // A batch that succeeded has nothing left to resume; one with a failed job keeps every record, so that
       // --resume runs the failed jobs alone.
