@@ -198,7 +198,12 @@ void PipelineCheckpoint::write_state(std::optional<std::size_t> running, const R
   }
 }
 
-void PipelineCheckpoint::starting(std::size_t index) { write_state(index, nullptr); }
+void PipelineCheckpoint::starting(std::size_t index) {
+  // Once per run: after that, each step's record names the next step as under way (one write per step).
+  if (started_) return;
+  started_ = true;
+  write_state(index, nullptr);
+}
 
 void PipelineCheckpoint::finished(std::size_t index, const CrowdFile* crowd, const std::string& name, std::size_t written,
                                   const fs::path& output, bool read_later) {
@@ -216,7 +221,7 @@ void PipelineCheckpoint::finished(std::size_t index, const CrowdFile* crowd, con
         if (writer_) {
           try {
             make_folder(folder_);
-            write_crowd_file(file, *crowd);
+            write_crowd_file(file, *crowd, {}, CrowdStorage::plain);  // read back soon: deflate is not worth its time
           } catch (const Error& e) {
             disable(e.what());
           }
@@ -227,7 +232,7 @@ void PipelineCheckpoint::finished(std::size_t index, const CrowdFile* crowd, con
       if (!name.empty()) crowds_[name] = index;
     }
   }
-  write_state(std::nullopt, nullptr);
+  write_state(done_ < steps_ ? std::optional<std::size_t>(done_) : std::nullopt, nullptr);
   // Crowds no later step can read any more (neither named nor the last): their copies go.
   std::set<std::size_t> kept;
   for (const auto& [n, i] : crowds_) kept.insert(i);

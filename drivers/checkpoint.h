@@ -14,7 +14,8 @@
 //                   made) and the step wrote no crowd file of its own (one it wrote holds the same crowd: the
 //                   checkpoint names that file instead of copying it). A crowd no later step reads is not kept.
 //
-// Every file is written atomically (AtomicOutput), after the step's own output: a run killed at any point leaves
+// The state is written when the run starts and after each step (naming the next step as under way). Every file is
+// written atomically (AtomicOutput), after the step's own output: a run killed at any point leaves
 // the previous state or the new one, and a step killed between its output and its record is simply run again
 // (it writes the same bits). A crowd round-trips a crowd file exactly, so a restored crowd is the crowd in memory.
 //
@@ -69,7 +70,8 @@ class PipelineCheckpoint {
   /// --resume: removes any checkpoint of this job and returns nullopt.
   [[nodiscard]] std::optional<RestoredPipeline> restore();
 
-  /// Records that step `index` (0-based) is under way.
+  /// Records that step `index` (0-based), the first this run runs, is under way (later calls do nothing: each
+  /// step's record from finished() names the next step as under way).
   void starting(std::size_t index);
   /// Records that step `index` is done: `crowd` is what it made (null for picture and table steps), `name` its
   /// name ("" when unnamed); `written` counts the outputs so far. A crowd a later step reads (`read_later`) is
@@ -96,6 +98,7 @@ class PipelineCheckpoint {
   Context& context_;
   std::size_t done_ = 0;
   std::size_t written_ = 0;
+  bool started_ = false;
   std::map<std::string, std::size_t> crowds_;  // step name → the step whose crowd it names
   std::optional<std::size_t> last_;
   std::map<std::size_t, std::filesystem::path> files_;  // step → the crowd file that holds its crowd

@@ -164,7 +164,7 @@ Scene read_scene(const h5::Group& parameters) {
 }
 
 void write_time_element(const h5::Group& trajectory, const std::string& name, const std::vector<double>& values,
-                        std::uint64_t T, std::uint64_t N, std::uint64_t width, bool first) {
+                        std::uint64_t T, std::uint64_t N, std::uint64_t width, bool first, const h5::Layout& layout) {
   h5::Group element = trajectory.create_group(name);
   if (first) {
     std::vector<std::int64_t> step(T);
@@ -176,7 +176,7 @@ void write_time_element(const h5::Group& trajectory, const std::string& name, co
   }
   std::vector<std::uint64_t> shape{T, N};
   if (width > 1) shape.push_back(width);
-  element.write("value", values, shape, h5::Layout{true, 0});
+  element.write("value", values, shape, layout);
 }
 
 // The H5MD box: `boundary` per spatial axis (x, y, z) is "periodic" where the scene's region wraps (its x and y
@@ -331,7 +331,8 @@ void check_crowd_memory(const h5::Group& trajectory, std::uint64_t T, std::uint6
 
 }  // namespace
 
-void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra) {
+void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra, CrowdStorage storage) {
+  const h5::Layout per_frame{storage == CrowdStorage::compressed, 0};
   const CrowdMotion& m = file.motion;
   m.validate("output " + path.filename().string());
   file.scene.validate("output " + path.filename().string());
@@ -351,13 +352,13 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       write_h5md_header(root, file.provenance.program_version);
 
       const h5::Group trajectory = root.create_group("particles").create_group("trajectory");
-      write_time_element(trajectory, "position", m.positions, T, N, 3, true);
+      write_time_element(trajectory, "position", m.positions, T, N, 3, true, per_frame);
       const h5::Group position = trajectory.open_group("position");
       position.write("time", m.times, {T});
       position.set_attribute_on("time", "unit", "s");
       write_box(trajectory, file.scene, T);
-      if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false);
-      detail::write_pose_elements(trajectory, m);
+      if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false, per_frame);
+      detail::write_pose_elements(trajectory, m, per_frame);
 
       std::vector<std::int64_t> per_frame_id(T * N);
       for (std::uint64_t t = 0; t < T; ++t) {
@@ -366,7 +367,7 @@ void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, 
       h5::Group id = trajectory.create_group("id");
       id.link("step", "/particles/trajectory/position/step");
       id.link("time", "/particles/trajectory/position/time");
-      id.write("value", per_frame_id, {T, N}, h5::Layout{true, 0});
+      id.write("value", per_frame_id, {T, N}, per_frame);
       trajectory.write("species", m.species, {N});
 
       if (!file.formation_edges.empty()) {

@@ -97,7 +97,7 @@ void read_actions(const h5::Group& trajectory, CrowdMotion& m) {
 
 }  // namespace
 
-void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m) {
+void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m, const h5::Layout& layout) {
   const std::uint64_t T = m.frame_count(), N = m.agent_count();
   if (!m.orientations.empty()) {
     std::vector<double> value(m.orientations);
@@ -110,7 +110,7 @@ void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m) {
     element.set_attribute("components", quaternion_components);
     element.set_attribute("body_frame", std::string("unit quaternion (x, y, z, w) turning the agent's body frame "
                                                     "(forward +x, left +y, up +z) into the world; NaN where absent"));
-    element.write("value", value, {T, N, 4}, h5::Layout{true, 0});
+    element.write("value", value, {T, N, 4}, layout);
   }
   if (!m.actions.empty()) {
     std::vector<std::int32_t> value(m.actions);
@@ -127,7 +127,7 @@ void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m) {
     const h5::Group element = create_element(trajectory, "action");
     element.set_attribute("names", names);
     element.set_attribute("props", props);
-    element.write("value", value, {T, N}, h5::Layout{true, 0});
+    element.write("value", value, {T, N}, layout);
   }
 }
 

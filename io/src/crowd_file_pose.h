@@ -8,8 +8,9 @@
 namespace throng::detail {
 
 /// Writes `motion`'s orientations and actions, each only when given, as H5MD time-dependent elements sharing
-/// position's step and time (hard links), absent agents masked (NaN orientation, action −1). Call after position.
-void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& motion);
+/// position's step and time (hard links), absent agents masked (NaN orientation, action −1), stored as `layout`
+/// says. Call after position.
+void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& motion, const h5::Layout& layout);
 
 /// Reads the elements back into `motion`, whose positions and ids are read (presence is known): orientations and
 /// actions stay empty where the file has none (every file written before them). InputError naming the dataset or

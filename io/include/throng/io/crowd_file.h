@@ -66,8 +66,13 @@ struct CrowdFile : Crowd {
 /// Adds method data under /parameters/throng (the group is passed in) before the file is closed and moved into place.
 using ExtraWriter = std::function<void(const h5::Group& throng_parameters)>;
 
+/// How the per-frame arrays are stored: shuffled and deflated (outputs: a third to a tenth of the bytes), or plain
+/// (a file read back soon by the same program, as run's checkpoints are: deflate costs more time than it saves).
+enum class CrowdStorage { compressed, plain };
+
 /// Validates `file` (InputError), then writes it atomically to `path` (IoError on failure; nothing is left behind).
-void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra = {});
+void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra = {},
+                      CrowdStorage storage = CrowdStorage::compressed);
 
 /// Reads and validates a crowd file. Throws IoError (missing or unreadable file) or InputError naming the dataset
 /// and the problem: not HDF5, truncated, missing dataset, wrong rank or shape, NaN for a present agent, times not
