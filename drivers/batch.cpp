@@ -36,7 +36,8 @@ JobOutcome from_json(const nlohmann::json& j) {
 }
 
 // What this rank prints if a signal ends the batch while job `running` (an index into `mine`) is under way: its
-// finished jobs as the summary has them, the running one "interrupted", the rest "not run", and how to continue.
+// finished jobs as the summary has them, the running one "interrupted", the rest "not run", and how to continue
+// (`running` == mine.size(): all finished, the rank waits for the others).
 std::string interrupt_summary(const std::vector<fs::path>& jobs, const std::vector<std::size_t>& mine, std::size_t running,
                               const nlohmann::json& finished, const Context& context) {
   Report r;
@@ -118,7 +119,8 @@ std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::
     }
     local.push_back(to_json(o, k));
   }
-  set_interrupt_note(-1, "");
+  // Until the outcomes are merged a signal still prints this rank's jobs, all finished.
+  set_interrupt_note(me == 0 ? summary_fd : 2, interrupt_summary(jobs, mine, mine.size(), local, context));
 
   // Every rank's outcomes to rank 0, merged in job order, then back to every rank.
   const std::vector<std::byte> mine_bytes = bytes_of(local.dump());
@@ -133,6 +135,7 @@ std::vector<JobOutcome> run_batch(const std::vector<fs::path>& jobs, const std::
     merged = bytes_of(all.dump());
   }
   mpi::broadcast(merged, 0);
+  set_interrupt_note(-1, "");
   std::vector<JobOutcome> outcomes;
   for (const auto& j : nlohmann::json::parse(text_of(merged))) outcomes.push_back(from_json(j));
   return outcomes;

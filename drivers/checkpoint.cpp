@@ -5,10 +5,16 @@
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -18,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int state_format = 1;
+constexpr int state_format = 2;
 
 std::string host_name() {
   char name[256] = {};
@@ -50,6 +56,44 @@ void make_folder(const fs::path& folder) {
   throw IoError(folder.string() + ": cannot create the checkpoint folder (" + ec.message() + ")");
 }
 
+// Opens and locks (flock, exclusive, without waiting) the folder `folder`, created first when `create`: its
+// descriptor, -1 when another process holds the lock, -2 when there is no such folder (and not `create`). Tries
+// again when the folder was removed or replaced between the open and the lock (its holder finished and removed it).
+int lock_folder(const fs::path& folder, bool create) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    if (create) make_folder(folder);
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) {
+      if (!create && errno == ENOENT) return -2;
+      continue;
+    }
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd);
+      if (error == EWOULDBLOCK) return -1;
+      throw IoError(folder.string() + ": cannot lock the checkpoint folder (" + std::strerror(error) + ")");
+    }
+    struct stat held {}, now {};
+    if (::fstat(fd, &held) == 0 && ::stat(folder.c_str(), &now) == 0 && held.st_dev == now.st_dev && held.st_ino == now.st_ino) {
+      return fd;
+    }
+    ::close(fd);
+  }
+  throw IoError(folder.string() + ": cannot lock the checkpoint folder (it keeps being removed)");
+}
+
+// `path` as it is now (size and modification time), for a KeptFile.
+PipelineCheckpoint::KeptFile stamp_of(const fs::path& path) {
+  PipelineCheckpoint::KeptFile kept{path};
+  std::error_code ec;
+  kept.size = fs::file_size(path, ec);
+  if (ec) throw IoError(path.string() + ": cannot read its size (" + ec.message() + ")");
+  const auto modified = fs::last_write_time(path, ec);
+  if (ec) throw IoError(path.string() + ": cannot read its modification time (" + ec.message() + ")");
+  kept.modified = std::chrono::duration_cast<std::chrono::nanoseconds>(modified.time_since_epoch()).count();
+  return kept;
+}
+
 }  // namespace
 
 std::string stable_hash(const std::string& text) {
@@ -73,83 +117,160 @@ fs::path checkpoint_folder(const CheckpointOptions& options, const fs::path& job
 }
 
 void remove_checkpoints(const CheckpointOptions& options, const std::vector<fs::path>& jobs) {
+  for (const fs::path& job : jobs) {
+    const fs::path folder = checkpoint_folder(options, job);
+    int fd = -2;
+    try {
+      fd = lock_folder(folder, false);
+    } catch (const Error&) {
+      continue;  // left as it is: a later run of the job replaces it
+    }
+    if (fd < 0) continue;  // none, or another run of the job holds it
+    std::error_code ec;
+    fs::remove_all(folder, ec);
+    ::close(fd);
+  }
   std::error_code ec;
-  for (const fs::path& job : jobs) fs::remove_all(checkpoint_folder(options, job), ec);
   fs::remove(options.folder, ec);  // only when empty: another run's checkpoints stay
 }
 
 PipelineCheckpoint::PipelineCheckpoint(const CheckpointOptions& options, const fs::path& job_path, std::string fingerprint,
-                                       std::size_t steps, bool writer, Context& context)
+                                       std::size_t steps, const Communicator& ranks, Context& context)
     : folder_(checkpoint_folder(options, job_path)),
       job_(job_path.string()),
       fingerprint_(std::move(fingerprint)),
       steps_(steps),
       resume_(options.resume),
-      writer_(writer),
+      ranks_(ranks),
+      owner_(ranks.rank() == 0),
+      writing_(ranks.rank() == 0),
       context_(context) {}
+
+PipelineCheckpoint::~PipelineCheckpoint() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
 
 fs::path PipelineCheckpoint::crowd_path(std::size_t index) const {
   return folder_ / ("step-" + std::to_string(index + 1) + ".h5");
 }
 
+void PipelineCheckpoint::remove_folder() {
+  std::error_code ec;
+  fs::remove_all(folder_, ec);
+  fs::remove(folder_.parent_path(), ec);  // only when empty: other jobs' checkpoints stay
+}
+
 void PipelineCheckpoint::disable(const std::string& why) {
-  if (!writer_) return;
-  writer_ = false;
+  if (!writing_) return;
+  writing_ = false;
+  if (owner_) remove_folder();  // what was written would resume from a point this run has passed
   context_.warn("run: " + job_ + ": no checkpoint (" + why + "); this run cannot be resumed if it is interrupted");
 }
 
-std::optional<RestoredPipeline> PipelineCheckpoint::restore() {
+std::string PipelineCheckpoint::take_folder() {
+  try {
+    lock_fd_ = lock_folder(folder_, true);
+  } catch (const Error& e) {
+    owner_ = false;  // not locked: nothing here is this run's to remove
+    disable(e.what());
+    if (resume_) context_.info("run: " + job_ + ": no checkpoint in " + folder_.string() + ", starting from the first step");
+    return {};
+  }
+  if (lock_fd_ == -1) {
+    if (resume_) {
+      throw ConfigError("run --resume: another run of " + job_ + " is under way (it holds the checkpoint " + folder_.string() +
+                        "); wait for it to end, or stop it and resume then");
+    }
+    owner_ = writing_ = false;
+    context_.warn("run: " + job_ + ": another run of this job is under way (it holds the checkpoint " + folder_.string() +
+                  "): this run is not checkpointed and cannot be resumed if it is interrupted");
+    return {};
+  }
   std::error_code ec;
   const fs::path state_path = folder_ / "state.json";
   if (!resume_) {
-    if (writer_) fs::remove_all(folder_, ec);
-    return std::nullopt;
+    for (const auto& entry : fs::directory_iterator(folder_, ec)) fs::remove_all(entry.path(), ec);
+    return {};
   }
   if (!fs::exists(state_path, ec)) {
     context_.info("run: " + job_ + ": no checkpoint in " + folder_.string() + ", starting from the first step");
-    return std::nullopt;
+    return {};
   }
+  return read_text(state_path);
+}
+
+std::optional<RestoredPipeline> PipelineCheckpoint::restore() {
+  // Rank 0 takes the folder and reads the state; every rank parses it and reads the crowds it keeps; all agree
+  // (a collective) before rank 0 goes on to write.
+  std::string text;
+  on_every_rank([&] { if (ranks_.rank() == 0) text = take_folder(); }, ranks_);
+  if (ranks_.size() > 1) {
+    std::vector<std::byte> bytes = bytes_of(text);
+    ranks_.broadcast(bytes, 0);
+    text = text_of(bytes);
+  }
+  std::optional<RestoredPipeline> restored;
+  on_every_rank([&] { restored = parse_state(text); }, ranks_);
+  return restored;
+}
+
+std::optional<RestoredPipeline> PipelineCheckpoint::parse_state(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  const fs::path state_path = folder_ / "state.json";
+  const bool speaks = ranks_.rank() == 0;
   auto damaged = [&](const std::string& what) {
     return InputError(state_path.string() + ": a damaged checkpoint (" + what + "); run without --resume to start over");
   };
   try {
-    const Report state = Report::parse(read_text(state_path));
+    const Report state = Report::parse(text);
     if (state.at("format").get<int>() != state_format) throw damaged("format " + state.at("format").dump() + " is not this program's");
     if (state.at("fingerprint").get<std::string>() != fingerprint_) {
       throw ConfigError("run --resume: the checkpoint " + folder_.string() + " was made by another version of " + job_ +
-                        " (its job files, --set, --seed or the program differ); run without --resume to start over");
+                        " (its job files, --set, --seed, the number of MPI ranks or the program differ); run without --resume"
+                        " to start over");
     }
     RestoredPipeline r;
     r.done = state.at("done").get<std::size_t>();
     r.written = state.at("written").get<std::size_t>();
     if (r.done > steps_) throw damaged("more steps done than the job has");
-    if (const auto& running = state.at("running"); !running.is_null()) {
+    if (const auto& running = state.at("running"); !running.is_null() && speaks) {
       context_.info("run: " + job_ + ": the run being resumed stopped during step " + std::to_string(running.get<std::size_t>()) +
                     "/" + std::to_string(steps_) + " on rank " + std::to_string(state.at("rank").get<int>()) + " (pid " +
                     std::to_string(state.at("pid").get<long>()) + " on " + state.at("host").get<std::string>() + ")");
     }
     if (state.contains("report")) {
       r.report = state.at("report");
-      context_.info("run: " + job_ + ": finished in the run being resumed");
+      if (speaks) context_.info("run: " + job_ + ": finished in the run being resumed");
       done_ = r.done;
       written_ = r.written;
       return r;
     }
+    for (const auto& [index, file] : state.at("files").items()) {
+      files_[std::stoul(index)] = KeptFile{file.at("path").get<std::string>(), file.at("size").get<std::uintmax_t>(),
+                                           file.at("modified").get<std::int64_t>()};
+    }
     // Each kept crowd is read once, however many names share it.
     std::map<std::size_t, CrowdFile> crowds;
-    for (const auto& [index, path] : state.at("files").items()) files_[std::stoul(index)] = path.get<std::string>();
     auto crowd_of = [&](std::size_t index) -> const CrowdFile& {
       if (index >= r.done || !files_.count(index)) throw damaged("it names the crowd of step " + std::to_string(index + 1) + ", which it does not keep");
       auto it = crowds.find(index);
-      if (it == crowds.end()) {
-        try {
-          it = crowds.emplace(index, read_crowd_file(files_.at(index))).first;
-        } catch (const Error& e) {
-          throw_as(e.exit_code(), "run --resume: the checkpoint " + folder_.string() + " keeps step " + std::to_string(index + 1) +
-                                      "'s crowd in " + files_.at(index).string() + ", which cannot be read: " + e.what());
+      if (it != crowds.end()) return it->second;
+      const KeptFile& kept = files_.at(index);
+      const std::string what = "the checkpoint " + folder_.string() + " keeps step " + std::to_string(index + 1) + "'s crowd in " +
+                               kept.path.string();
+      std::error_code ec;
+      if (fs::exists(kept.path, ec)) {
+        const KeptFile now = stamp_of(kept.path);
+        if (now.size != kept.size || now.modified != kept.modified) {
+          throw ConfigError("run --resume: " + what + ", which changed after the run being resumed wrote it; run without"
+                            " --resume to start over");
         }
       }
-      return it->second;
+      try {
+        return crowds.emplace(index, read_crowd_file(kept.path)).first->second;
+      } catch (const Error& e) {
+        throw_as(e.exit_code(), "run --resume: " + what + ", which cannot be read: " + e.what());
+      }
     };
     for (const auto& [name, index] : state.at("crowds").items()) {
       crowds_[name] = index.get<std::size_t>();
@@ -161,16 +282,20 @@ std::optional<RestoredPipeline> PipelineCheckpoint::restore() {
     }
     done_ = r.done;
     written_ = r.written;
-    context_.info("run: " + job_ + ": resuming after step " + std::to_string(r.done) + "/" + std::to_string(steps_) +
-                  " (checkpoint " + folder_.string() + ")");
+    if (speaks) {
+      context_.info("run: " + job_ + ": resuming after step " + std::to_string(r.done) + "/" + std::to_string(steps_) +
+                    " (checkpoint " + folder_.string() + ")");
+    }
     return r;
   } catch (const nlohmann::json::exception& e) {
+    throw damaged(e.what());
+  } catch (const std::logic_error& e) {  // std::stoul on a step index that is not one
     throw damaged(e.what());
   }
 }
 
 void PipelineCheckpoint::write_state(std::optional<std::size_t> running, const Report* report) {
-  if (!writer_) return;
+  if (!writing_) return;
   Report state;
   state["format"] = state_format;
   state["job"] = job_;
@@ -186,7 +311,9 @@ void PipelineCheckpoint::write_state(std::optional<std::size_t> running, const R
   state["crowds"] = crowds;
   state["last"] = last_ ? Report(*last_) : Report(nullptr);
   Report files = Report::object();
-  for (const auto& [index, path] : files_) files[std::to_string(index)] = path.string();
+  for (const auto& [index, kept] : files_) {
+    files[std::to_string(index)] = {{"path", kept.path.string()}, {"size", kept.size}, {"modified", kept.modified}};
+  }
   state["files"] = files;
   state["written"] = written_;
   if (report) state["report"] = *report;
@@ -206,30 +333,28 @@ void PipelineCheckpoint::starting(std::size_t index) {
 }
 
 void PipelineCheckpoint::finished(std::size_t index, const CrowdFile* crowd, const std::string& name, std::size_t written,
-                                  const fs::path& output, bool read_later) {
+                                  const fs::path& output, bool read_later, bool output_rewritten) {
   done_ = index + 1;
   written_ = written;
-  if (crowd) {
+  if (crowd && writing_) {
     // A crowd no later step reads is not kept (nor named: no later step names it either).
     last_.reset();
     if (!name.empty()) crowds_.erase(name);
     if (read_later) {
-      std::error_code ec;
-      fs::path file = output.empty() ? fs::path() : fs::absolute(output, ec);
-      if (file.empty() || ec) {
-        file = crowd_path(index);
-        if (writer_) {
-          try {
-            make_folder(folder_);
-            write_crowd_file(file, *crowd, {}, CrowdStorage::plain);  // read back soon: deflate is not worth its time
-          } catch (const Error& e) {
-            disable(e.what());
-          }
+      try {
+        std::error_code ec;
+        fs::path file = output.empty() || output_rewritten ? fs::path() : fs::absolute(output, ec);
+        if (file.empty() || ec) {
+          file = crowd_path(index);
+          make_folder(folder_);
+          write_crowd_file(file, *crowd, {}, CrowdStorage::plain);  // read back soon: deflate is not worth its time
         }
+        files_[index] = stamp_of(file);
+        last_ = index;
+        if (!name.empty()) crowds_[name] = index;
+      } catch (const Error& e) {
+        disable(e.what());
       }
-      files_[index] = file;
-      last_ = index;
-      if (!name.empty()) crowds_[name] = index;
     }
   }
   write_state(done_ < steps_ ? std::optional<std::size_t>(done_) : std::nullopt, nullptr);
@@ -243,24 +368,21 @@ void PipelineCheckpoint::finished(std::size_t index, const CrowdFile* crowd, con
       continue;
     }
     std::error_code ec;
-    if (writer_ && it->second == crowd_path(it->first)) fs::remove(it->second, ec);
+    if (writing_ && it->second.path == crowd_path(it->first)) fs::remove(it->second.path, ec);
     it = files_.erase(it);
   }
 }
 
 void PipelineCheckpoint::completed(const Report& report, bool keep) {
-  if (!keep) {
-    if (!writer_) return;
-    std::error_code ec;
-    fs::remove_all(folder_, ec);
-    fs::remove(folder_.parent_path(), ec);  // only when empty: other jobs' checkpoints stay
+  if (!keep || !writing_) {
+    if (owner_) remove_folder();
     return;
   }
   crowds_.clear();
   last_.reset();
   files_.clear();
   write_state(std::nullopt, &report);
-  if (!writer_) return;
+  if (!writing_) return;
   for (std::size_t i = 0; i < steps_; ++i) {
     std::error_code ec;
     fs::remove(crowd_path(i), ec);

@@ -150,9 +150,10 @@ std::vector<bool> read_later(const std::vector<ConfigNode>& steps, const std::ve
 }
 
 // What a checkpoint of this pipeline must agree with to be resumed (drivers/checkpoint.h): the program, the job
-// as loaded (with --set), the seed, and every step's job file as it is now.
-std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>& steps, const Context& context) {
-  std::string text = std::string(THRONG_VERSION) + '\0' + to_yaml_text(job.yaml()) + '\0' + std::to_string(context.global.seed);
+// as loaded (with --set), the seed, the number of ranks running it, and every step's job file as it is now.
+std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>& steps, const Context& context, int ranks) {
+  std::string text = std::string(THRONG_VERSION) + '\0' + to_yaml_text(job.yaml()) + '\0' + std::to_string(context.global.seed) +
+                     '\0' + std::to_string(ranks);
   for (const ConfigNode& step : steps) {
     const auto j = step.find("job");
     if (!j || !j->yaml().IsScalar()) continue;  // a malformed one is the step's error when it runs
@@ -164,11 +165,32 @@ std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>&
   return stable_hash(text);
 }
 
+// For each step: whether a later step writes its `output` path again (then the checkpoint cannot name that file as
+// the holder of this step's crowd). Compared as absolute normal paths, as named_outputs() gives them.
+std::vector<bool> output_rewritten(const std::vector<ConfigNode>& steps) {
+  auto output_of = [](const ConfigNode& step) -> std::filesystem::path {
+    const YAML::Node o = step.yaml()["output"];
+    if (!o || !o.IsScalar()) return {};
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::absolute(o.Scalar(), ec);
+    return ec ? std::filesystem::path(o.Scalar()) : p.lexically_normal();
+  };
+  std::vector<bool> rewritten(steps.size(), false);
+  std::map<std::filesystem::path, std::size_t> last_writer;
+  for (std::size_t i = steps.size(); i-- > 0;) {
+    const std::filesystem::path out = output_of(steps[i]);
+    if (out.empty()) continue;
+    rewritten[i] = last_writer.count(out) > 0;
+    last_writer[out] = i;
+  }
+  return rewritten;
+}
+
 }  // namespace
 
 StdoutRedirect::StdoutRedirect(int target) {
   flush_stdout();
-  saved_ = ::dup(1);
+  saved_ = ::fcntl(1, F_DUPFD_CLOEXEC, 0);
   const int fd = target >= 0 ? target : ::open("/dev/null", O_WRONLY);
   if (saved_ < 0 || fd < 0 || ::dup2(fd, 1) < 0) throw IoError("run: cannot redirect standard output");
   if (target < 0) ::close(fd);
@@ -217,8 +239,11 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
   // A pipeline run by every rank is checkpointed by rank 0; each job of a batch by the rank that runs it, which
   // keeps the finished job's record until the batch has succeeded.
   const bool in_batch = !collective;
-  PipelineCheckpoint checkpoint(checkpoints, job_path, fingerprint_of(job, steps, context), steps.size(), writer, context);
+  const Communicator& ranks = collective ? context.communicator() : Communicator::single();
+  PipelineCheckpoint checkpoint(checkpoints, job_path, fingerprint_of(job, steps, context, ranks.size()), steps.size(), ranks,
+                                context);
   const std::vector<bool> crowd_read_later = read_later(steps, commands);
+  const std::vector<bool> rewritten_later = output_rewritten(steps);
   if (auto restored = checkpoint.restore()) {
     if (restored->report) {
       checkpoint.completed(*restored->report, in_batch);
@@ -252,7 +277,7 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
       }
     }
     if (!result) {
-      checkpoint.finished(i, nullptr, "", written, {}, false);
+      checkpoint.finished(i, nullptr, "", written, {}, false, false);
       continue;
     }
     if (step.has("output")) ++written;
@@ -268,7 +293,7 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
     }
     const auto n = step.find("name");
     checkpoint.finished(i, &result->crowd, n ? n->as_string() : "", written, o ? std::filesystem::path(o->as_string()) : std::filesystem::path(),
-                        crowd_read_later[i]);
+                        crowd_read_later[i], rewritten_later[i]);
     if (n) named.insert_or_assign(n->as_string(), result->crowd);
     last = std::move(result->crowd);
   }

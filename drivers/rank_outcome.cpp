@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <new>
+#include <span>
 #include <stdexcept>
 
 namespace throng::cli {
@@ -30,6 +31,35 @@ void throw_as(ExitCode code, const std::string& message) {
     case ExitCode::not_converged: throw NumericalError(message);
     default: throw std::runtime_error(message);  // internal (70)
   }
+}
+
+void on_every_rank(const std::function<void()>& work, const Communicator& ranks) {
+  std::exception_ptr failure;
+  try {
+    work();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  if (ranks.size() == 1) {
+    if (failure) std::rethrow_exception(failure);
+    return;
+  }
+  const double mine = failure ? 1.0 : 0.0;
+  const auto failed = ranks.all_gather(std::span<const double>(&mine, 1));
+  int first = -1;
+  for (int r = 0; r < ranks.size() && first < 0; ++r) {
+    if (failed[static_cast<std::size_t>(r)].front() != 0.0) first = r;
+  }
+  if (first < 0) return;
+  std::vector<std::byte> outcome;  // the exit code, then the message
+  if (ranks.rank() == first) {
+    const ErrorOutcome e = outcome_of(failure);
+    outcome = bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
+  }
+  ranks.broadcast(outcome, first);
+  if (ranks.rank() == first) std::rethrow_exception(failure);
+  const std::string text = text_of(outcome);
+  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text[0])), text.substr(1));
 }
 
 std::vector<std::byte> bytes_of(const std::string& text) {

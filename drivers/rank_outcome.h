@@ -3,10 +3,12 @@
 // Used by batches (drivers/batch.h: each job's outcome) and by pipeline steps run on rank 0 alone (run.cpp).
 #pragma once
 
+#include <throng/core/communicator.h>
 #include <throng/core/errors.h>
 
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,12 @@ struct ErrorOutcome {
 /// Throws the error type of `code` (ConfigError, InputError, IoError, NumericalError; std::runtime_error for
 /// internal) with `message`, so that a rank leaves with the same exit code as the rank that failed.
 [[noreturn]] void throw_as(ExitCode code, const std::string& message);
+
+/// Runs `work` on every rank of `ranks` (a collective: every rank calls it) and makes them agree on how it ended:
+/// all return when it succeeded everywhere; otherwise every rank leaves with the error of the lowest failing rank
+/// (that rank rethrows its own exception, the others throw one of the same exit code and message), so no rank goes
+/// on to a collective the others left.
+void on_every_rank(const std::function<void()>& work, const Communicator& ranks);
 
 [[nodiscard]] std::vector<std::byte> bytes_of(const std::string& text);
 [[nodiscard]] std::string text_of(const std::vector<std::byte>& bytes);

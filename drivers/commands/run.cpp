@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace throng::cli {
@@ -57,7 +58,7 @@ class RunCommand final : public Command {
       std::vector<JobOutcome> outcomes;
       {
         // stdout itself: the summary of a batch ended by a signal goes there (closed when the batch ends).
-        const std::unique_ptr<int, void (*)(int*)> summary_fd(new int(::dup(1)), [](int* fd) {
+        const std::unique_ptr<int, void (*)(int*)> summary_fd(new int(::fcntl(1, F_DUPFD_CLOEXEC, 0)), [](int* fd) {
           set_interrupt_note(-1, "");  // no note may point at the descriptor once it is closed
           if (*fd >= 0) ::close(*fd);
           delete fd;

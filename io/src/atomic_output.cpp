@@ -13,7 +13,6 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <deque>
 #include <mutex>
 #include <string>
 
@@ -57,6 +56,8 @@ struct Note {
   std::string text;
 };
 std::atomic<const Note*> interrupt_note{nullptr};
+// Set by the handler before it reads the note: from then on a replaced note is never freed (the process is ending).
+std::atomic<bool> in_handler{false};
 
 void write_all(int fd, const char* data, std::size_t size) {
   while (size > 0) {
@@ -72,6 +73,7 @@ extern "C" void remove_pending_and_exit(int signal) {
   for (auto& slot : pending) {
     if (slot.state.load() == slot_published) ::unlink(slot.path);
   }
+  in_handler.store(true);
   if (const Note* note = interrupt_note.load()) write_all(note->fd, note->text.data(), note->text.size());
   ::_exit(128 + signal);
 }
@@ -216,17 +218,13 @@ void install_interrupt_cleanup() {
 }
 
 void set_interrupt_note(int fd, std::string text) {
-  // Notes are small and replaced a few times per job: each is kept for the life of the program (a deque does not
-  // move its elements) so the handler never reads one being destroyed.
+  // The note replaced is freed unless a handler already runs. Sequentially consistent atomics: a handler that set
+  // in_handler after this load reads the note after this exchange, so it reads the new note, never the freed one.
   static std::mutex guard;
-  static std::deque<Note> kept;
-  if (text.empty()) {
-    interrupt_note.store(nullptr);
-    return;
-  }
   const std::lock_guard lock(guard);
-  kept.push_back(Note{fd, std::move(text)});
-  interrupt_note.store(&kept.back());
+  const Note* fresh = text.empty() ? nullptr : new Note{fd, std::move(text)};
+  const Note* old = interrupt_note.exchange(fresh);
+  if (!in_handler.load()) delete old;
 }
 
 void check_distinct(const std::filesystem::path& input, const std::filesystem::path& output) {

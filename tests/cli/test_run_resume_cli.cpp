@@ -103,17 +103,86 @@ TEST_CASE("a pipeline killed during a step and resumed writes the same bits with
   check_same_files(dir / "reference", killed, outputs);
   CHECK_FALSE(fs::exists(killed / ".throng-resume"));
 
-  // Killed at other points (before the first checkpoint, inside or between steps): the resumed run always ends with
+  // Killed at other points (before the first checkpoint, as step 1, 3 or 4 starts): the resumed run always ends with
   // the reference's bits.
-  for (const double delay : {0.05, 0.4, 1.2}) {
-    const auto folder = dir / ("killed-after-" + std::to_string(delay));
+  const std::vector<std::string> points{"", "\"running\": 1", "\"running\": 3", "\"running\": 4"};
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const auto folder = dir / ("killed-at-" + std::to_string(p));
     fs::create_directories(folder);
-    const int status = run_and_stop(folder, "run " + job.string(), "", delay, "KILL");
+    const int status = run_and_stop(folder, "run " + job.string(), points[p], 0.02, "KILL");
     CHECK((status == 137 || status == 0));
     REQUIRE(run_in(folder, "run --resume " + job.string()) == 0);
-    INFO("killed after " << delay << " s: " << read_bytes(folder / "err.txt"));
+    INFO("killed at " << (points[p].empty() ? "0.02 s" : points[p]) << ": " << read_bytes(folder / "err.txt"));
     check_same_files(dir / "reference", folder, outputs);
   }
+}
+
+TEST_CASE("a second run of a job under way leaves the first's checkpoint alone and resuming it meanwhile is refused") {
+  const auto dir = test::scratch_dir("cli_resume_concurrent");
+  write_inputs(dir);
+  const auto job = write_pipeline(dir);
+  fs::create_directories(dir / "reference");
+  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+
+  // The first run is stopped (SIGSTOP: it holds its checkpoint's lock) during step 2; a second run of the job in the
+  // same folder runs without a checkpoint, and a --resume meanwhile is refused (exit 2); then the first is killed.
+  const auto work = dir / "work";
+  fs::create_directories(work);
+  const std::string script =
+      "cd " + work.string() + " && { " + test::command("run " + job.string()) + " >a-out.txt 2>a-err.txt & pid=$!; "
+      "for i in $(seq 1 6000); do grep -qs '\"running\": 2' .throng-resume/*/state.json && break; sleep 0.01; done; "
+      "kill -STOP $pid; cp .throng-resume/*/state.json held.json; " +
+      test::command("run " + job.string()) + " >b-out.txt 2>b-err.txt; echo $? >b-status.txt; " +
+      test::command("run --resume " + job.string()) + " >c-out.txt 2>c-err.txt; echo $? >c-status.txt; "
+      "cp .throng-resume/*/state.json after.json; kill -KILL $pid; wait $pid; echo $? >a-status.txt; }";
+  REQUIRE(test::run_command(script) == 0);
+  CHECK(read_bytes(work / "a-status.txt") == "137\n");
+  CHECK(read_bytes(work / "b-status.txt") == "0\n");
+  CHECK_THAT(read_bytes(work / "b-err.txt"), Contains("another run of this job is under way") && Contains("not checkpointed"));
+  CHECK(read_bytes(work / "c-status.txt") == "2\n");
+  CHECK_THAT(read_bytes(work / "c-err.txt"), Contains("another run of") && Contains("is under way"));
+  CHECK(read_bytes(work / "after.json") == read_bytes(work / "held.json"));  // neither touched the first's checkpoint
+
+  // Killed, the first run resumes from its own checkpoint.
+  REQUIRE(run_in(work, "run --resume " + job.string()) == 0);
+  INFO(read_bytes(work / "err.txt"));
+  CHECK_THAT(read_bytes(work / "err.txt"), Contains("resuming after step 1/4"));
+  check_same_files(dir / "reference", work, {"b.h5", "c.h5", "d.svg"});
+  CHECK_FALSE(fs::exists(work / ".throng-resume"));
+}
+
+TEST_CASE("a crowd file a later step writes again is copied into the checkpoint and one changed since is refused") {
+  const auto dir = test::scratch_dir("cli_resume_rewritten");
+  write_inputs(dir);
+  // Step 1's crowd, read by step 3 as `a`, is written to x.h5, which step 2 overwrites with its own crowd.
+  const fs::path job = dir / "rewrite.yaml";
+  std::ofstream(job) << "steps:\n"
+                        "  - step: edit\n    input: large.h5\n    name: a\n    output: x.h5\n" << drags
+                     << "  - step: edit\n    output: x.h5\n"
+                        "    drags:\n      - {frames: [0, 0]}\n      - {frames: [end, end], offset: [0, 2]}\n"
+                        "  - step: edit\n    input: a\n    output: y.h5\n"
+                        "    drags:\n      - {frames: [0, 0]}\n      - {frames: [end, end], offset: [-1, 0]}\n";
+  fs::create_directories(dir / "reference");
+  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  const auto work = dir / "work";
+  fs::create_directories(work);
+  REQUIRE(run_and_stop(work, "run " + job.string(), "\"running\": 3", 0, "KILL") == 137);
+  REQUIRE(run_in(work, "run --resume " + job.string()) == 0);
+  INFO(read_bytes(work / "err.txt"));
+  CHECK_THAT(read_bytes(work / "err.txt"), Contains("resuming after step 2/3"));
+  check_same_files(dir / "reference", work, {"x.h5", "y.h5"});
+
+  // A crowd file the checkpoint names (b.h5, step 2's output, read by step 3) changed after the run wrote it: resuming
+  // is refused (exit 2) naming it, and nothing is written.
+  const auto pipeline = write_pipeline(dir);
+  const auto changed = dir / "changed";
+  fs::create_directories(changed);
+  REQUIRE(run_and_stop(changed, "run " + pipeline.string(), "\"running\": 3", 0, "KILL") == 137);
+  REQUIRE(fs::exists(changed / "b.h5"));
+  fs::copy_file(dir / "reference" / "x.h5", changed / "b.h5", fs::copy_options::overwrite_existing);
+  CHECK(run_in(changed, "run --resume " + pipeline.string()) == 2);
+  CHECK_THAT(read_bytes(changed / "err.txt"), Contains("b.h5") && Contains("changed after the run being resumed wrote it"));
+  CHECK_FALSE(fs::exists(changed / "c.h5"));
 }
 
 TEST_CASE("resuming checks the checkpoint: another job is refused and a damaged one named while none starts over") {
@@ -239,7 +308,7 @@ TEST_CASE("a rank killed inside a batch over 2 MPI ranks is reported with the jo
       "cd " + work.string() + " && { " + mpi + test::throng_program().string() + " --json run" + jobs +
       " >out.txt 2>err.txt & pid=$!; f=; for i in $(seq 1 6000); do for s in .throng-resume/*/state.json; do "
       "grep -qs '\"rank\": 1' $s && grep -qs '\"running\": 1' $s && f=$s; done; [ -n \"$f\" ] && break; sleep 0.01; done; "
-      "rank1=$(grep -E '\"pid\"' $f | tr -dc 0-9); kill -KILL $rank1; wait $pid; echo $? >status.txt; echo $rank1 >rank1.txt; }";
+      "[ -n \"$f\" ] || { kill -KILL $pid; wait $pid; exit 1; }; rank1=$(grep -E '\"pid\"' $f | tr -dc 0-9); kill -KILL $rank1; wait $pid; echo $? >status.txt; echo $rank1 >rank1.txt; }";
   REQUIRE(test::run_command(script) == 0);
   const std::string rank1 = read_bytes(work / "rank1.txt").substr(0, read_bytes(work / "rank1.txt").find('\n'));
   INFO(read_bytes(work / "err.txt"));
@@ -251,4 +320,41 @@ TEST_CASE("a rank killed inside a batch over 2 MPI ranks is reported with the jo
                             " >out.txt 2>err.txt)") == 0);
   CHECK_THAT(read_bytes(work / "err.txt"), Contains("m1.yaml: the run being resumed stopped during step 1/1 on rank 1 (pid " + rank1));
   CHECK(read_crowd_file(work / "m1.h5").motion.agent_count() == 300);
+}
+
+TEST_CASE("one pipeline run by 2 MPI ranks, stopped and resumed by 2 ranks, writes the bits of an uninterrupted run", "[mpi]") {
+  const std::string mpiexec = test::required_mpiexec();
+  const auto dir = test::scratch_dir("cli_resume_collective_mpi");
+  write_inputs(dir);
+  const auto job = write_pipeline(dir);
+  const std::string mpi = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " + mpiexec + " -np 2 --oversubscribe " +
+                          test::throng_program().string();
+  fs::create_directories(dir / "reference");
+  REQUIRE(test::run_command("(cd " + (dir / "reference").string() + " && " + mpi + " run " + job.string() + " >out.txt 2>err.txt)") == 0);
+
+  // SIGTERM to mpiexec (as a scheduler stops a job) while step 2 is under way: it passes the signal to both ranks.
+  const auto work = dir / "work";
+  fs::create_directories(work);
+  REQUIRE(test::run_command("cd " + work.string() + " && { " + mpi + " run " + job.string() + " >out.txt 2>err.txt & pid=$!; "
+                            "for i in $(seq 1 6000); do grep -qs '\"running\": 2' .throng-resume/*/state.json && break; "
+                            "kill -0 $pid 2>/dev/null || break; sleep 0.01; done; kill -TERM $pid; wait $pid; echo $? >status.txt; }") == 0);
+  INFO(read_bytes(work / "err.txt"));
+  CHECK(read_bytes(work / "status.txt") != "0\n");
+  CHECK_FALSE(fs::exists(work / "c.h5"));
+
+  // Resumed by 2 ranks: rank 0 reads the checkpoint, both ranks its crowds; the same bits as the reference.
+  REQUIRE(test::run_command("(cd " + work.string() + " && " + mpi + " run --resume " + job.string() + " >out.txt 2>err.txt)") == 0);
+  const std::string log = read_bytes(work / "err.txt");
+  INFO(log);
+  // (mpiexec passes the signal on a moment later: the ranks may have finished step 2 by then.)
+  CHECK_THAT(log, Contains("resuming after step 1/4") || Contains("resuming after step 2/4"));
+  check_same_files(dir / "reference", work, {"b.h5", "c.h5", "d.svg"});
+  CHECK_FALSE(fs::exists(work / ".throng-resume"));
+
+  // Another number of ranks computes another run: refused (exit 2) rather than mixed.
+  REQUIRE(test::run_command("cd " + work.string() + " && { " + mpi + " run " + job.string() + " >out.txt 2>err.txt & pid=$!; "
+                            "for i in $(seq 1 6000); do grep -qs '\"running\": 2' .throng-resume/*/state.json && break; "
+                            "kill -0 $pid 2>/dev/null || break; sleep 0.01; done; kill -TERM $pid; wait $pid; }") != 0);
+  CHECK(run_in(work, "run --resume " + job.string()) == 2);
+  CHECK_THAT(read_bytes(work / "err.txt"), Contains("the number of MPI ranks"));
 }
