@@ -40,15 +40,23 @@ std::optional<StepResult> on_rank_0(Step&& step, const Communicator& ranks) {
       result = step();
     } catch (...) {
       failure = std::current_exception();
-      const ErrorOutcome e = outcome_of(failure);
-      outcome = bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
+      outcome = encoded_outcome(failure);
     }
   }
   ranks.broadcast(outcome, 0);
   if (failure) std::rethrow_exception(failure);
   if (outcome.empty()) return result;
-  const std::string text = text_of(outcome);
-  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text[0])), text.substr(1));
+  throw_encoded(outcome);
+}
+
+// A step's `output` path as an absolute normal path (as given when it cannot be made absolute); empty when the
+// step names none. named_outputs() and output_rewritten() compare outputs this way.
+std::filesystem::path output_path_of(const YAML::Node& step) {
+  if (!step.IsMap() || !step["output"] || !step["output"].IsScalar()) return {};
+  const std::string given = step["output"].Scalar();
+  std::error_code ec;
+  const std::filesystem::path p = std::filesystem::absolute(given, ec);
+  return ec ? std::filesystem::path(given) : p.lexically_normal();
 }
 
 Command* find(const std::vector<Command*>& commands, const std::string& which) {
@@ -168,17 +176,10 @@ std::string fingerprint_of(const ConfigNode& job, const std::vector<ConfigNode>&
 // For each step: whether a later step writes its `output` path again (then the checkpoint cannot name that file as
 // the holder of this step's crowd). Compared as absolute normal paths, as named_outputs() gives them.
 std::vector<bool> output_rewritten(const std::vector<ConfigNode>& steps) {
-  auto output_of = [](const ConfigNode& step) -> std::filesystem::path {
-    const YAML::Node o = step.yaml()["output"];
-    if (!o || !o.IsScalar()) return {};
-    std::error_code ec;
-    const std::filesystem::path p = std::filesystem::absolute(o.Scalar(), ec);
-    return ec ? std::filesystem::path(o.Scalar()) : p.lexically_normal();
-  };
   std::vector<bool> rewritten(steps.size(), false);
   std::map<std::filesystem::path, std::size_t> last_writer;
   for (std::size_t i = steps.size(); i-- > 0;) {
-    const std::filesystem::path out = output_of(steps[i]);
+    const std::filesystem::path out = output_path_of(steps[i].yaml());
     if (out.empty()) continue;
     rewritten[i] = last_writer.count(out) > 0;
     last_writer[out] = i;
@@ -209,10 +210,7 @@ std::vector<std::filesystem::path> named_outputs(const ConfigNode& job) {
   const YAML::Node steps = job.yaml()["steps"];
   if (!steps || !steps.IsSequence()) return out;
   for (const YAML::Node& step : steps) {
-    if (!step.IsMap() || !step["output"] || !step["output"].IsScalar()) continue;
-    std::error_code ec;
-    const std::filesystem::path p = std::filesystem::absolute(step["output"].Scalar(), ec);
-    out.push_back(ec ? std::filesystem::path(step["output"].Scalar()) : p.lexically_normal());
+    if (std::filesystem::path p = output_path_of(step); !p.empty()) out.push_back(std::move(p));
   }
   return out;
 }

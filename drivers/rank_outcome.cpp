@@ -51,15 +51,21 @@ void on_every_rank(const std::function<void()>& work, const Communicator& ranks)
     if (failed[static_cast<std::size_t>(r)].front() != 0.0) first = r;
   }
   if (first < 0) return;
-  std::vector<std::byte> outcome;  // the exit code, then the message
-  if (ranks.rank() == first) {
-    const ErrorOutcome e = outcome_of(failure);
-    outcome = bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
-  }
+  std::vector<std::byte> outcome;
+  if (ranks.rank() == first) outcome = encoded_outcome(failure);
   ranks.broadcast(outcome, first);
   if (ranks.rank() == first) std::rethrow_exception(failure);
+  throw_encoded(outcome);
+}
+
+std::vector<std::byte> encoded_outcome(const std::exception_ptr& error) {
+  const ErrorOutcome e = outcome_of(error);
+  return bytes_of(std::string(1, static_cast<char>(static_cast<int>(e.code))) + e.message);
+}
+
+void throw_encoded(const std::vector<std::byte>& outcome) {
   const std::string text = text_of(outcome);
-  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text[0])), text.substr(1));
+  throw_as(static_cast<ExitCode>(static_cast<unsigned char>(text.at(0))), text.substr(1));
 }
 
 std::vector<std::byte> bytes_of(const std::string& text) {

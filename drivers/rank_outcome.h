@@ -34,6 +34,12 @@ struct ErrorOutcome {
 /// on to a collective the others left.
 void on_every_rank(const std::function<void()>& work, const Communicator& ranks);
 
+/// A caught exception (non-null) as the bytes one rank broadcasts to the others: its exit code, then its message.
+[[nodiscard]] std::vector<std::byte> encoded_outcome(const std::exception_ptr& error);
+
+/// Throws what encoded_outcome() encoded (non-empty), as throw_as() does.
+[[noreturn]] void throw_encoded(const std::vector<std::byte>& outcome);
+
 [[nodiscard]] std::vector<std::byte> bytes_of(const std::string& text);
 [[nodiscard]] std::string text_of(const std::vector<std::byte>& bytes);
 
