@@ -78,6 +78,36 @@ TEST_CASE("obstacle avoidance keeps agents at the obstacle distance when they ca
   CHECK(closest > o.agent_radius_m);
 }
 
+TEST_CASE("filtered, an agent walking head-on at a pillar brakes in time instead of being stopped dead at it") {
+  // The pillar sits on the agent's line; the slide turns the path force only within obstacle_distance_m (0.5 m),
+  // too late to turn at max_acceleration from 1.3 m/s. Braking from the stopping distance keeps every change of
+  // the walking velocity within the step's bound plus the brake's own (2 max_acceleration), and the move is never
+  // cut at the boundary (which would be a stop from 1.3 m/s in one step: over 30 m/s²).
+  const Drawing d = straight_band(30, 3, 1.3);
+  throng::Scene scene;
+  scene.obstacles.push_back({throng::Circle{{12, 0}, 1.0}, {}, "pillar"});
+  Options o;
+  const Course course = analyse_strokes(d.strokes, o);
+  for (const double lateral : {0.0, 0.05, -0.2}) {
+    CAPTURE(lateral);
+    Simulation sim(course, agent_parameters(course, {{0, lateral}}, o), scene, o);
+    Vector2d previous_step = Vector2d::Zero();
+    double largest_change = 0, closest = 1e300;
+    while (!sim.finished() && sim.time() < 60) {
+      const Vector2d before = sim.position(0);
+      sim.step();
+      const Vector2d step = sim.position(0) - before;
+      largest_change = std::max(largest_change, (step - previous_step).norm() / (o.time_step_s * o.time_step_s));
+      previous_step = step;
+      closest = std::min(closest, closest_approach(sim, scene));
+    }
+    CHECK(sim.finished());  // it goes round
+    CHECK(largest_change <= 2 * o.max_acceleration_m_s2);
+    CHECK(closest >= o.agent_radius_m - 1e-9);
+    CHECK(sim.unresolved_obstacle_contacts() == 0);
+  }
+}
+
 TEST_CASE("fast agents cannot jump a thin wall") {
   // Drawn at 20 m/s with 0.1 s steps: 2 m per step, eight times the wall's reach of one body radius.
   const Drawing d = straight_band(30, 3, 20.0);

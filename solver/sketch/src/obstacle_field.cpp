@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <variant>
 
 namespace throng::sketch::detail {
 namespace {
@@ -23,7 +25,7 @@ void ObstacleField::rebuild(const NeighbourGrid& grid, double t0, double t1) {
   ids_.clear();
   start_.assign(grid.cell_count() + 1, 0);
   if (scene_.obstacles.empty()) return;
-  const double grow = std::max(reach_, radius_);
+  const double grow = std::max({reach_, radius_, radius_ + look_ahead_});
   struct Span {
     std::size_t c0, c1, r0, r1;
   };
@@ -105,6 +107,58 @@ Eigen::Vector2d ObstacleField::push(const Eigen::Vector2d& p, double t) const {
     if (d.signed_distance < reach_) f += (reach_ - d.signed_distance) * d.normal;
   });
   return f;
+}
+
+Eigen::Vector2d ObstacleField::brake(const Eigen::Vector2d& p, double t0, double t1, Eigen::Vector2d u,
+                                     double deceleration) const {
+  const double dt = t1 - t0;
+  const double walking = u.norm();
+  for_each_near(p, [&](std::uint32_t, const Obstacle& obstacle) {
+    const ObstacleDistance d = distance_to(obstacle, p, t1);
+    const double gap = std::max(0.0, d.signed_distance - radius_);
+    if (gap > look_ahead_) return;
+    // The boundary's own speed away from p (negative: coming at it), over the step.
+    const double receding = obstacle.is_moving() ? (d.signed_distance - distance_to(obstacle, p, t0).signed_distance) / dt : 0.0;
+    const double closing = -u.dot(d.normal) - receding;  // the normal points from the obstacle to p
+    const double allowed = std::min(std::sqrt(2.0 * deceleration * gap), gap / dt);
+    if (closing <= allowed) return;
+    u += (closing - allowed) * d.normal;
+    const double away = u.dot(d.normal);
+    if (away > 0 && u.squaredNorm() > walking * walking) {  // stepping aside: keep |u|, the side step first
+      const Eigen::Vector2d along = u - away * d.normal;
+      const double room = walking > away ? std::sqrt(walking * walking - away * away) : 0.0;
+      const double length = along.norm();
+      u = away * d.normal + (length > room ? Eigen::Vector2d(along * (room / length)) : along);
+    }
+  });
+  return u;
+}
+
+double ObstacleField::fastest_boundary_speed() const {
+  double fastest = 0.0;
+  for (const Obstacle& o : scene_.obstacles) {
+    const double extent = std::visit(
+        [](const auto& shape) -> double {
+          using S = std::decay_t<decltype(shape)>;
+          if constexpr (std::is_same_v<S, Circle>) {
+            return shape.center.norm() + shape.radius;
+          } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
+            double r = 0.0;
+            for (const Eigen::Vector2d& v : shape.vertices) r = std::max(r, v.norm());
+            return r;
+          } else {
+            return std::max(shape.a.norm(), shape.b.norm()) + 0.5 * shape.thickness;
+          }
+        },
+        o.shape);
+    for (std::size_t k = 1; k < o.motion.size(); ++k) {
+      const PoseKey& a = o.motion[k - 1];
+      const PoseKey& b = o.motion[k];
+      const double span = b.time - a.time;
+      fastest = std::max(fastest, ((b.translation - a.translation).norm() + std::abs(b.angle - a.angle) * extent) / span);
+    }
+  }
+  return fastest;
 }
 
 bool ObstacleField::overlaps(const Eigen::Vector2d& p, double t) const {

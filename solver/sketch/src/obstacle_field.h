@@ -52,6 +52,24 @@ class ObstacleField {
   /// Eq. 18–19 alone (no sliding): the push on a standing agent.
   [[nodiscard]] Eigen::Vector2d push(const Eigen::Vector2d& p, double t) const;
 
+  /// Obstacles whose boundary lies up to `metres` beyond the agent radius are also listed at the next rebuild, for
+  /// brake(); 0 (the default) lists only those within max(reach, radius).
+  void look_ahead(double metres) noexcept { look_ahead_ = metres; }
+
+  /// The walking velocity u of an agent at p over the step [t0, t1], limited so that it can still stop short of
+  /// every obstacle decelerating at `deceleration` (m/s², > 0): its speed toward an obstacle whose boundary lies g
+  /// beyond the agent radius at t1, relative to that boundary, is at most min(√(2 a g), g / (t1 − t0)) (the
+  /// braking curve, and no contact within the step). Only the component toward each obstacle is taken away; an
+  /// obstacle coming at the agent makes it step aside, and then the rest of u is shortened so that |u| grows
+  /// only when the obstacle comes faster than u was. Following the curve costs about `deceleration` more than
+  /// the step already changed u. Obstacles beyond look_ahead are not seen.
+  [[nodiscard]] Eigen::Vector2d brake(const Eigen::Vector2d& p, double t0, double t1, Eigen::Vector2d u,
+                                      double deceleration) const;
+
+  /// The fastest any obstacle's boundary moves (m/s): over each pair of pose keys, the translation's speed plus
+  /// the turn rate times the shape's farthest point from its own origin. 0 when every obstacle is static.
+  [[nodiscard]] double fastest_boundary_speed() const;
+
   /// True when a body of the agent radius at p overlaps an obstacle at time t.
   [[nodiscard]] bool overlaps(const Eigen::Vector2d& p, double t) const;
 
@@ -73,6 +91,7 @@ class ObstacleField {
   const Scene& scene_;
   double radius_, reach_;
   bool slide_;
+  double look_ahead_ = 0.0;
   const NeighbourGrid* grid_ = nullptr;
   std::vector<Eigen::AlignedBox2d> boxes_;  // #obstacles, grown bounds over the step
   std::vector<std::uint32_t> start_;        // #cells + 1
