@@ -22,10 +22,12 @@ constexpr double square_on = 0.1;
 void ObstacleField::rebuild(const NeighbourGrid& grid, double t0, double t1) {
   grid_ = &grid;
   boxes_.clear();
+  shape_boxes_.clear();
   ids_.clear();
   start_.assign(grid.cell_count() + 1, 0);
   if (scene_.obstacles.empty()) return;
   const double grow = std::max({reach_, radius_, radius_ + look_ahead_});
+  const double shape_grow = std::max(reach_, radius_);
   struct Span {
     std::size_t c0, c1, r0, r1;
   };
@@ -34,6 +36,7 @@ void ObstacleField::rebuild(const NeighbourGrid& grid, double t0, double t1) {
   for (const Obstacle& o : scene_.obstacles) {
     const Eigen::AlignedBox2d b = bounds_over(o, t0, t1);
     boxes_.emplace_back(b.min() - Eigen::Vector2d(grow, grow), b.max() + Eigen::Vector2d(grow, grow));
+    shape_boxes_.emplace_back(b.min() - Eigen::Vector2d(shape_grow, shape_grow), b.max() + Eigen::Vector2d(shape_grow, shape_grow));
     const Eigen::AlignedBox2d& g = boxes_.back();
     spans.push_back({grid.column(g.min().x()), grid.column(g.max().x()), grid.row(g.min().y()), grid.row(g.max().y())});
   }
@@ -70,7 +73,7 @@ ObstacleResponse ObstacleField::respond(const Eigen::Vector2d& p, double t, cons
     if (slide_ && d.normal.dot(pull) < 0 && d.signed_distance < pressing) {
       pressing = d.signed_distance;
       contact = d;
-      contact_box = boxes_[o];
+      contact_box = shape_boxes_[o];  // not grown by look_ahead: the side rule sees the obstacle's own extent
     }
   });
   if (!std::isfinite(pressing)) return r;  // no contact: the side is forgotten
@@ -114,11 +117,12 @@ Eigen::Vector2d ObstacleField::brake(const Eigen::Vector2d& p, double t0, double
   const double dt = t1 - t0;
   const double walking = u.norm();
   for_each_near(p, [&](std::uint32_t, const Obstacle& obstacle) {
-    const ObstacleDistance d = distance_to(obstacle, p, t1);
+    // The gap at the step's start, closed over the step by the agent's speed toward the boundary and the
+    // boundary's own speed toward p (a moving obstacle: measured over the step at p).
+    const ObstacleDistance d = distance_to(obstacle, p, t0);
     const double gap = std::max(0.0, d.signed_distance - radius_);
     if (gap > look_ahead_) return;
-    // The boundary's own speed away from p (negative: coming at it), over the step.
-    const double receding = obstacle.is_moving() ? (d.signed_distance - distance_to(obstacle, p, t0).signed_distance) / dt : 0.0;
+    const double receding = obstacle.is_moving() ? (distance_to(obstacle, p, t1).signed_distance - d.signed_distance) / dt : 0.0;
     const double closing = -u.dot(d.normal) - receding;  // the normal points from the obstacle to p
     const double allowed = std::min(std::sqrt(2.0 * deceleration * gap), gap / dt);
     if (closing <= allowed) return;

@@ -32,7 +32,8 @@ class ObstacleField {
   ObstacleField(const Scene& scene, double radius, double reach, bool slide)
       : scene_(scene), radius_(radius), reach_(reach), slide_(slide) {}
 
-  /// Lists, for every cell of `grid`, the obstacles whose bounds over [t0, t1], grown by max(reach, radius),
+  /// Lists, for every cell of `grid`, the obstacles whose bounds over [t0, t1], grown by max(reach, radius) and
+  /// by radius + look_ahead,
   /// overlap the cell (cells are clamped, so a point outside the grid finds every obstacle near it in its border
   /// cell). `grid` must outlive the next rebuild.
   void rebuild(const NeighbourGrid& grid, double t0, double t1);
@@ -58,7 +59,7 @@ class ObstacleField {
 
   /// The walking velocity u of an agent at p over the step [t0, t1], limited so that it can still stop short of
   /// every obstacle decelerating at `deceleration` (m/s², > 0): its speed toward an obstacle whose boundary lies g
-  /// beyond the agent radius at t1, relative to that boundary, is at most min(√(2 a g), g / (t1 − t0)) (the
+  /// beyond the agent radius at t0, relative to that boundary, is at most min(√(2 a g), g / (t1 − t0)) (the
   /// braking curve, and no contact within the step). Only the component toward each obstacle is taken away; an
   /// obstacle coming at the agent makes it step aside, and then the rest of u is shortened so that |u| grows
   /// only when the obstacle comes faster than u was. Following the curve costs about `deceleration` more than
@@ -93,7 +94,8 @@ class ObstacleField {
   bool slide_;
   double look_ahead_ = 0.0;
   const NeighbourGrid* grid_ = nullptr;
-  std::vector<Eigen::AlignedBox2d> boxes_;  // #obstacles, grown bounds over the step
+  std::vector<Eigen::AlignedBox2d> boxes_;        // #obstacles, bounds over the step grown for the cell lists
+  std::vector<Eigen::AlignedBox2d> shape_boxes_;  // #obstacles, bounds over the step grown by max(reach, radius)
   std::vector<std::uint32_t> start_;        // #cells + 1
   std::vector<std::uint32_t> ids_;
 };

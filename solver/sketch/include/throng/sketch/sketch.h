@@ -57,7 +57,7 @@
 //   min(√(2 a g), g / Δt), a = max_acceleration, so an agent walking at a pillar slows and slides round it
 //   instead of being stopped dead at the boundary by the obstacle cut, and steps aside from a moving obstacle
 //   coming at it (shortening the rest of u so |u| grows only for an obstacle faster than the agent). Measured on
-//   sketch-large: the largest acceleration went from 11.97 to 6.5 m/s². Braking adds at most about a to a step.
+//   sketch-large: the largest acceleration went from 11.97 to 5.8 m/s². Braking adds at most about a to a step.
 // - Target advancement: after the move, while the agent is within R of its target OR has passed it (is ahead of
 //   the line through the target across the main line's direction there) OR the target lies inside an obstacle
 //   (grown by the agent radius: no agent can get there), the target moves on — several points
