@@ -8,11 +8,13 @@
 
 #include <throng/check/motion_check.h>
 #include <throng/io/crowd_file.h>
+#include <throng/io/hdf5.h>
 
 #include <catch2/catch.hpp>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -39,6 +41,29 @@ std::string number(double v) {
 // The fastest speed of a crowd file, measured by the checker's library.
 double fastest(const fs::path& crowd) {
   return check::measure(read_crowd_file(crowd).motion, {}, check::Settings{}).speed.max;
+}
+
+// The fastest segment of the patch library a tiling wrote with its crowd (/parameters/throng/tiling/library:
+// `samples` rows x, y, heading, time; `fragment` rows whose last column is the fragment's first sample), read
+// from the file rather than from the tiler's code.
+double library_fastest(const fs::path& crowd) {
+  const h5::File file = h5::File::open(crowd);
+  const h5::Group library = file.root().open_group("parameters").open_group("throng").open_group("tiling").open_group("library");
+  const auto samples = library.read_doubles("samples", 2);
+  const auto fragments = library.read_int64("fragment", 2);
+  REQUIRE(samples.shape[1] == 4);
+  const std::size_t columns = fragments.shape[1], count = fragments.shape[0], rows = samples.shape[0];
+  double top = 0;
+  for (std::size_t f = 0; f < count; ++f) {
+    const auto first = static_cast<std::size_t>(fragments.values[f * columns + columns - 1]);
+    const std::size_t end = f + 1 < count ? static_cast<std::size_t>(fragments.values[(f + 1) * columns + columns - 1]) : rows;
+    for (std::size_t i = first; i + 1 < end; ++i) {
+      const double* a = &samples.values[i * 4];
+      const double* b = &samples.values[(i + 1) * 4];
+      top = std::max(top, std::hypot(b[0] - a[0], b[1] - a[1]) / (b[3] - a[3]));
+    }
+  }
+  return top;
 }
 
 // Runs check-motion on `crowd` with `limits`; the report is in the failure message.
@@ -137,6 +162,25 @@ TEST_CASE("check-motion: sketch-large's 2,000 agents pass at issue 14's limits p
   // The course is drawn at 1.4 m/s. Before agents braked for obstacles (solver/sketch/src/obstacle_field.h,
   // brake) they were stopped dead at the pillars and shoved by the cart: 11.97 m/s², 195 agents beyond 8.
   check_sketch("sketch-large.yaml", 1.4, "");
+}
+
+TEST_CASE("check-motion: every shipped tile config's crowd passes at issue 14's limits, against its patch library") {
+  // The library is the tiling's input: speed at most 1.25 × its fastest segment (limits.speed_ratio holds the
+  // deformation to it), acceleration as everywhere, and facings at most 2π rad/s (the default; the layout turns
+  // them at 270°/s at most). Before: 2.7-3.6 m/s, 9.9 m/s² and facings up to 25 rad/s.
+  const fs::path dir = test::scratch_dir("cli_check_motion_tile");
+  for (const char* config : {"tile-control.yaml", "tile-dynamic.yaml", "tile-objects.yaml", "tile-real.yaml", "tile-repeating.yaml", "tile-static.yaml"}) {
+    INFO(config);
+    const fs::path out = dir / (std::string(config) + ".h5");
+    std::string text;
+    const int code = test::run_command(test::throng_program().string() + " --quiet tile " +
+                                           (test::source_dir() / "configs" / config).string() + " -o " + out.string(), &text);
+    INFO(text);
+    REQUIRE(code == 0);
+    const double input = library_fastest(out);
+    CHECK(input > 0.9);  // the library walks
+    require_passes(out, " --max-speed " + number(1.25 * input) + acceleration_limits);
+  }
 }
 
 TEST_CASE("check-motion: run-town's timewarp step (Eq. 12's warp then the guard) brings the dragged copy back within limits") {

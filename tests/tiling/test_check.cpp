@@ -112,7 +112,8 @@ TEST_CASE("the checker finds characters of one instance overlapping, unless thei
 TEST_CASE("the checker finds an over-stretched, over-bent or time-shifted patch") {
   const PatchLibrary lib = walk_library();
   const Environment env = box(12, 12, 20);
-  const CheckOptions options;
+  CheckOptions options;
+  options.limits.speed_ratio = 0;  // the paper's limits alone (test_deformation.cpp tests the speed limit)
   // Limits per 0.1 s sample (3 frames of 30 Hz): stretch 9 cm, bend 21°, time shift 0.054 s.
   SECTION("stretch") {
     Tiling t = two_chains(lib);

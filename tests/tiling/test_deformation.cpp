@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 using namespace throng;
@@ -306,19 +307,23 @@ TEST_CASE("a pulled two-character patch keeps its interpersonal constraints and 
   // A small pull stays within the per-frame limits; a 1.5 m, 1 s pull cannot (at most 9 cm and 0.054 s per
   // 0.1 s sample, and the elastic string spreads the pull over the first seconds only).
   const DeformationLimits limits;
-  CHECK(within_limits(meet.fragments[0], paths[0], limits));
+  const double top_speed = speed_limit(builtin_library({"meet"}), limits.speed_ratio);
+  CHECK(within_limits(meet.fragments[0], paths[0], limits, top_speed));
   const std::vector<Path> far = pulled({1.5, 0.0}, 1.0);
-  CHECK_FALSE(within_limits(meet.fragments[0], far[0], limits));
+  CHECK_FALSE(within_limits(meet.fragments[0], far[0], limits, top_speed));
 }
 
 TEST_CASE("the deformation limits are per frame of 30 Hz motion: stretch 3 cm, bend 7°, time shift 0.018 s") {
   const PatchLibrary lib = builtin_library({"walk"});
   const Fragment& walk = lib.types[0].fragments[0];  // 0.1 s samples: 3 frames each
-  const DeformationLimits limits;
+  DeformationLimits limits;
+  limits.speed_ratio = 0;  // the paper's limits alone (the speed limit has its own test below)
+  const double no_limit = std::numeric_limits<double>::infinity();
   const Path rigid = place(lib.types[0], Transform{})[0];
-  REQUIRE(within_limits(walk, rigid, limits));
+  REQUIRE(within_limits(walk, rigid, limits, no_limit));
   // Each test changes one sample by just under and just over its limit; the checker agrees with the tiler.
   CheckOptions check;
+  check.limits = limits;
   const auto checker_accepts = [&](const Path& p) {
     Tiling t;
     t.instances.push_back({0, Transform{}, false, {p}});
@@ -332,12 +337,12 @@ TEST_CASE("the deformation limits are per frame of 30 Hz motion: stretch 3 cm, b
     // Stretch: samples 11.. moved along the path, segment 10 longer by scale × 9 cm.
     Path stretched = rigid;
     for (std::size_t s = 11; s < stretched.positions.size(); ++s) stretched.positions[s].x() += scale * 3 * limits.stretch_m;
-    CHECK(within_limits(walk, stretched, limits) == within);
+    CHECK(within_limits(walk, stretched, limits, no_limit) == within);
     CHECK(checker_accepts(stretched) == within);
     // Time shift: samples 11.. later by scale × 0.054 s.
     Path shifted = rigid;
     for (std::size_t s = 11; s < shifted.times.size(); ++s) shifted.times[s] += scale * 3 * limits.time_shift_s;
-    CHECK(within_limits(walk, shifted, limits) == within);
+    CHECK(within_limits(walk, shifted, limits, no_limit) == within);
     CHECK(checker_accepts(shifted) == within);
     // Bend: the path turns at sample 10 by scale × 21°, its later segments rotated about it.
     Path bent = rigid;
@@ -345,7 +350,41 @@ TEST_CASE("the deformation limits are per frame of 30 Hz motion: stretch 3 cm, b
     for (std::size_t s = 11; s < bent.positions.size(); ++s) {
       bent.positions[s] = bent.positions[10] + rotate(rigid.positions[s] - rigid.positions[10], turn);
     }
-    CHECK(within_limits(walk, bent, limits) == within);
+    CHECK(within_limits(walk, bent, limits, no_limit) == within);
     CHECK(checker_accepts(bent) == within);
+  }
+}
+
+TEST_CASE("beyond the paper, no deformed segment is faster than speed_ratio times the library's fastest") {
+  // walk moves 0.13 m per 0.1 s sample (1.3 m/s): the limit is 1.25 × 1.3 = 1.625 m/s, a segment of 0.1625 m,
+  // well inside the paper's stretch limit (0.09 m more per sample), which alone would allow 2.2 m/s.
+  const PatchLibrary lib = builtin_library({"walk"});
+  const Fragment& walk = lib.types[0].fragments[0];
+  const DeformationLimits limits;
+  REQUIRE(limits.speed_ratio == 1.25);
+  const double top_speed = speed_limit(lib, limits.speed_ratio);
+  CHECK_THAT(top_speed, Catch::Matchers::WithinRel(1.625, 1e-9));
+  CHECK(speed_limit(lib, 0) == std::numeric_limits<double>::infinity());
+  // A library of standing patches has no speed to keep to: no limit rather than a limit of 0.
+  CHECK(speed_limit(builtin_library({"wait"}), limits.speed_ratio) == std::numeric_limits<double>::infinity());
+  const Path rigid = place(lib.types[0], Transform{})[0];
+  CheckOptions check;
+  const auto checker_accepts = [&](const Path& p) {
+    Tiling t;
+    t.instances.push_back({0, Transform{}, false, {p}});
+    Environment env;
+    env.scene.region = Region{{-20, -20}, {20, 20}, -20, 20, {false, false, false}};
+    return check_tiling(lib, t, env, check).count(FailureKind::deformation) == 0;
+  };
+  for (const double scale : {0.99, 1.01}) {
+    INFO("scale " << scale);
+    const bool within = scale < 1;
+    // Segment 10 made scale × (1.625 − 1.3) m/s faster: samples 11.. moved along the path.
+    Path faster = rigid;
+    for (std::size_t s = 11; s < faster.positions.size(); ++s) faster.positions[s].x() += scale * (top_speed - 1.3) * 0.1;
+    CHECK(within_limits(walk, faster, limits, top_speed) == within);
+    CHECK(checker_accepts(faster) == within);
+    // Without the speed limit the paper's limits allow it.
+    CHECK(within_limits(walk, faster, limits, std::numeric_limits<double>::infinity()));
   }
 }

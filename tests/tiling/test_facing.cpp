@@ -137,7 +137,8 @@ TEST_CASE("tiled characters face along their patches' headings and act the patch
     k.type = lib.find("turn_in_place");
     k.transform = Transform{{4, 4}, 0.3, 4.0};  // turns over 3–5 s, undeformed (keyframed)
     const TilingResult r = tile(lib, env, {k}, quick_options(11), quiet);
-    const Characters laid = lay_out(lib, r.tiling, *env.scene.region, LayoutOptions{10.0, {1, 1, 1}});
+    // The patches' own headings: no facing-rate limit (its own test below).
+    const Characters laid = lay_out(lib, r.tiling, *env.scene.region, LayoutOptions{10.0, {1, 1, 1}, 0.0});
     const CrowdMotion& m = laid.motion;
     require_ground_facings(m);
     REQUIRE(r.tiling.instances[0].keyframed);
@@ -222,4 +223,55 @@ TEST_CASE("tiled characters face along their patches' headings and act the patch
       CHECK(std::abs(std::abs(angle_between(yaw(m, after, *a), yaw(m, bowing, *a))) - pi) < 1e-9);
     }
   }
+}
+
+TEST_CASE("a laid facing turns at most max_facing_rate per second, and is the patches' heading once it has caught up") {
+  // Stops, starts and waits joined with different headings: without the limit the character snaps round between
+  // two frames (a standing character's heading is not matched at a join).
+  NoProgress quiet;
+  const PatchLibrary lib = builtin_library({"walk", "stop", "start", "wait", "turn_in_place"});
+  const Environment env = box(8, 8, 8);
+  const TilingResult r = tile(lib, env, {}, quick_options(11), quiet);
+  const Characters free = lay_out(lib, r.tiling, *env.scene.region, LayoutOptions{10.0, {1, 1, 1}, 0.0});
+  const LayoutOptions limited_options{10.0, {1, 1, 1}};
+  REQUIRE(limited_options.max_facing_rate_rad_s == 1.5 * pi);
+  const Characters limited = lay_out(lib, r.tiling, *env.scene.region, limited_options);
+  const CrowdMotion& a = free.motion;
+  const CrowdMotion& b = limited.motion;
+  REQUIRE(a.agent_count() == b.agent_count());
+  for (std::size_t f = 0; f < a.frame_count(); ++f) {  // only the facing changes
+    for (std::size_t n = 0; n < a.agent_count(); ++n) {
+      REQUIRE(a.present(f, n) == b.present(f, n));
+      if (a.present(f, n)) REQUIRE(a.position(f, n) == b.position(f, n));
+    }
+  }
+  const double max_turn = 1.5 * pi / 10.0;
+  std::size_t snaps = 0, lagging = 0, frames = 0;
+  for (std::size_t n = 0; n < b.agent_count(); ++n) {
+    bool previous = false;
+    for (std::size_t f = 0; f < b.frame_count(); ++f) {
+      if (!b.present(f, n)) {
+        previous = false;
+        continue;
+      }
+      INFO("agent " << n << " frame " << f);
+      ++frames;
+      if (!previous) {
+        CHECK(b.orientation(f, n).coeffs() == a.orientation(f, n).coeffs());  // a run starts at the patch's heading
+      } else {
+        const double turn = std::abs(angle_between(yaw(b, f, n), yaw(b, f - 1, n)));
+        CHECK(turn <= max_turn + 1e-9);
+        snaps += std::abs(angle_between(yaw(a, f, n), yaw(a, f - 1, n))) > max_turn + 1e-9;
+        // Either the patches' heading, bit for bit, or a turn toward it at the full rate.
+        if (b.orientation(f, n).coeffs() != a.orientation(f, n).coeffs()) {
+          ++lagging;
+          CHECK(std::abs(turn - max_turn) < 1e-9);
+        }
+      }
+      previous = true;
+    }
+  }
+  CHECK(snaps > 0);    // the scene has snaps to limit
+  CHECK(lagging > 0);
+  CHECK(lagging < frames / 20);  // and the limit acts only around them
 }

@@ -117,6 +117,7 @@ void write_data(const h5::Group& g, const Run& run) {
   g.set_attribute("limit_time_shift", check.limits.time_shift_s);
   g.set_attribute("limit_frame_period", check.limits.frame_period_s);
   g.set_attribute("limit_bend_min_segment", check.limits.bend_min_segment_m);
+  g.set_attribute("limit_speed_ratio", check.limits.speed_ratio);
   g.set_attribute("match_distance", check.match.distance_m);
   g.set_attribute("match_angle", check.match.angle_rad);
   g.set_attribute("match_time", check.match.time_s);
@@ -399,6 +400,8 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   c.limits.time_shift_s = attribute_in(g, "limit_time_shift", Range::positive());
   c.limits.frame_period_s = attribute_in(g, "limit_frame_period", Range::positive());
   c.limits.bend_min_segment_m = attribute_in(g, "limit_bend_min_segment", Range::non_negative());
+  // Files written before the speed limit (limits.speed_ratio) have none: their tilings are checked without it.
+  c.limits.speed_ratio = g.has_attribute("limit_speed_ratio") ? attribute_in(g, "limit_speed_ratio", Range::non_negative()) : 0.0;
   c.match.distance_m = attribute_in(g, "match_distance", Range::positive());
   c.match.angle_rad = attribute_in(g, "match_angle", Range{0, std::numbers::pi * (1 + 1e-12), true, false});
   c.match.time_s = attribute_in(g, "match_time", Range::positive());

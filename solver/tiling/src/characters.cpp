@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -90,6 +91,17 @@ std::size_t count_characters(const PatchLibrary& library, const Tiling& tiling) 
   return heads + loops;
 }
 
+double max_turn_per_frame(const LayoutOptions& options) {
+  if (!(options.frame_rate_hz > 0) || !std::isfinite(options.frame_rate_hz)) {
+    throw ConfigError("output frame rate " + std::to_string(options.frame_rate_hz) + " Hz, expected > 0");
+  }
+  if (!(options.max_facing_rate_rad_s >= 0) || !std::isfinite(options.max_facing_rate_rad_s)) {
+    throw ConfigError("output max facing rate " + std::to_string(options.max_facing_rate_rad_s) + " rad/s, expected ≥ 0");
+  }
+  return options.max_facing_rate_rad_s > 0 ? options.max_facing_rate_rad_s / options.frame_rate_hz
+                                           : std::numeric_limits<double>::infinity();
+}
+
 Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Region& region, const LayoutOptions& options) {
   if (!(options.frame_rate_hz > 0) || !std::isfinite(options.frame_rate_hz)) {
     throw ConfigError("output frame rate " + std::to_string(options.frame_rate_hz) + " Hz, expected > 0");
@@ -118,6 +130,7 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
   const auto frames_total = static_cast<std::size_t>(std::floor((t_end - t_begin) * options.frame_rate_hz + 1e-9)) +
                             (region.periodic[2] ? 0 : 1);
   const auto frame_time = [&](std::size_t f) { return t_begin + static_cast<double>(f) / options.frame_rate_hz; };
+  const double max_turn = max_turn_per_frame(options);
   const auto inside = [&](const Eigen::Vector2d& p) {
     for (int a = 0; a < 2; ++a) {
       if (!region.periodic[static_cast<std::size_t>(a)]) continue;
@@ -216,7 +229,11 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
                 present = inside(q);
               }
               if (present) {
-                if (current.positions.empty()) current.first_frame = fr;
+                if (current.positions.empty()) {
+                  current.first_frame = fr;
+                } else {
+                  h = facing_toward(current.headings.back(), h, max_turn);
+                }
                 current.positions.push_back(q);
                 current.headings.push_back(h);
                 current.actions.push_back(action);

@@ -207,6 +207,17 @@ class Checker {
   void deformation_and_keyframes() {
     const DeformationLimits& L = o_.limits;
     const double slack = 1 + o_.limit_tolerance;
+    // The speed limit: speed_ratio times the library's fastest segment (measured here, not by the tiler's code).
+    double fastest = 0;
+    for (const PatchType& type : lib_.types) {
+      for (const Fragment& fr : type.fragments) {
+        for (std::size_t s = 0; s + 1 < fr.sample_count(); ++s) {
+          fastest = std::max(fastest, (fr.positions[s + 1] - fr.positions[s]).norm() / (fr.times[s + 1] - fr.times[s]));
+        }
+      }
+    }
+    const double top_speed =
+        L.speed_ratio > 0 && fastest > 0 ? L.speed_ratio * fastest * slack : std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < tiling_.instances.size(); ++i) {
       const Instance& inst = tiling_.instances[i];
       const PatchType& type = lib_.types[inst.type];
@@ -231,6 +242,11 @@ class Checker {
           if (stretch > L.stretch_m * frames * slack + o_.distance_tolerance_m) {
             fail(FailureKind::deformation, who + " segment " + std::to_string(s) + ": stretch " + std::to_string(stretch) +
                                                " m, limit " + std::to_string(L.stretch_m * frames) + " m");
+          }
+          const double speed = (p.positions[s + 1] - p.positions[s]).norm() / dt;
+          if (speed > top_speed + o_.distance_tolerance_m / dt) {
+            fail(FailureKind::deformation, who + " segment " + std::to_string(s) + ": speed " + std::to_string(speed) +
+                                               " m/s, limit " + std::to_string(top_speed) + " m/s (limits.speed_ratio)");
           }
         }
         for (std::size_t s = 1; s + 1 < n; ++s) {

@@ -9,8 +9,9 @@
 
 namespace throng::tiling {
 
-FrameStream::FrameStream(const PatchLibrary& library, const Region& region, double frame_rate_hz)
-    : library_(library), actions_(patch_actions(library)), region_(region), period_(periods(region)), rate_(frame_rate_hz) {
+FrameStream::FrameStream(const PatchLibrary& library, const Region& region, double frame_rate_hz, double max_turn)
+    : library_(library), actions_(patch_actions(library)), region_(region), period_(periods(region)), rate_(frame_rate_hz),
+      max_turn_(max_turn) {
   // As lay_out: frames from t0 every 1 / rate, the last at t1 (the time axis is not periodic here).
   frames_ = static_cast<std::size_t>(std::floor((region.t1 - region.t0) * rate_ + 1e-9)) + 1;
   for (std::size_t a = 0; a < 3; ++a) {
@@ -138,6 +139,8 @@ void FrameStream::emit(std::size_t end, CrowdMotion& frames, std::vector<std::ve
           action = b.action;
         }
         if (inside(q)) {
+          if (walk.agent >= 0) heading = facing_toward(walk.facing, heading, max_turn_);  // a present run goes on
+          walk.facing = heading;
           present.emplace_back(w, Pose{q, heading, action});
           if (walk.agent < 0) opened.push_back(w);
           continue;
@@ -244,6 +247,7 @@ void FrameStream::save(std::vector<std::byte>& out) const {
     w.put(walk.radius);
     w.put<std::uint64_t>(walk.runs);
     w.put(walk.agent);
+    w.put(walk.facing);
     w.put<std::uint64_t>(walk.spans.size());
     for (const auto& [node, span] : walk.spans) {
       w.put(node);
@@ -302,6 +306,7 @@ void FrameStream::load(const std::vector<std::byte>& in, std::size_t& at) {
     walk.radius = r.get<double>();
     walk.runs = r.get<std::uint64_t>();
     walk.agent = r.get<std::int64_t>();
+    walk.facing = r.get<double>();
     walk.spans.resize(r.count(sizeof(Node) + 2 * sizeof(double)));
     for (auto& [node, span] : walk.spans) {
       node = r.get<Node>();

@@ -29,7 +29,8 @@ namespace throng::tiling {
 class FrameStream {
  public:
   /// Frames t0 + f / frame_rate over the horizon region's [t0, t1] (the last at t1).
-  FrameStream(const PatchLibrary& library, const Region& region, double frame_rate_hz);
+  /// `max_turn`: the largest turn of a facing per frame (max_turn_per_frame(), characters.h).
+  FrameStream(const PatchLibrary& library, const Region& region, double frame_rate_hz, double max_turn);
 
   [[nodiscard]] std::size_t frame_count() const noexcept { return frames_; }
   [[nodiscard]] double frame_time(std::size_t f) const noexcept;
@@ -69,6 +70,7 @@ class FrameStream {
     double radius = 0;
     std::size_t runs = 0;        // present runs closed so far
     std::int64_t agent = -1;     // the agent of the present run, −1 when absent
+    double facing = 0;           // the facing shown at the last present frame (lay_out's rate limit)
     std::vector<std::pair<Node, std::array<double, 2>>> spans;  // fragment copies taken, with their time spans
     bool ended = false;          // the chain has no successor left: once past its samples, the walk is over
   };
@@ -85,6 +87,7 @@ class FrameStream {
   Region region_;
   Eigen::Vector3d period_;
   double rate_;
+  double max_turn_;
   std::size_t frames_ = 0;
   std::size_t next_frame_ = 0;
   std::int64_t next_agent_ = 0;

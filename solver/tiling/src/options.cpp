@@ -31,6 +31,8 @@ void validate(const Options& o) {
           o.search.jitter_angle_end_rad, "≥ search.jitter_start.angle");
   require(o.search.jitter_time_end_s >= o.search.jitter_time_start_s, "search.jitter_end.time", o.search.jitter_time_end_s,
           "≥ search.jitter_start.time");
+  require(o.limits.speed_ratio == 0 || o.limits.speed_ratio >= 1, "limits.speed_ratio", o.limits.speed_ratio,
+          "0 (no speed limit) or ≥ 1 (below 1 the library's own motion would break it)");
   if (o.preference.position) positive("preference.position.sigma", o.preference.position->sigma_m2);
   if (o.preference.direction) positive("preference.direction.sigma", o.preference.direction->sigma_rad2);
   if (o.preference.time) positive("preference.time.sigma", o.preference.time->sigma_s2);

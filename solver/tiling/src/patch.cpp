@@ -22,6 +22,23 @@ std::size_t PatchType::sample_count() const noexcept {
   return n;
 }
 
+double fastest_speed(const PatchLibrary& library) {
+  double fastest = 0.0;
+  for (const PatchType& type : library.types) {
+    for (const Fragment& f : type.fragments) {
+      for (std::size_t i = 0; i + 1 < f.sample_count(); ++i) {
+        fastest = std::max(fastest, (f.positions[i + 1] - f.positions[i]).norm() / (f.times[i + 1] - f.times[i]));
+      }
+    }
+  }
+  return fastest;
+}
+
+double speed_limit(const PatchLibrary& library, double speed_ratio) {
+  const double fastest = fastest_speed(library);
+  return speed_ratio > 0 && fastest > 0 ? speed_ratio * fastest : std::numeric_limits<double>::infinity();
+}
+
 std::vector<std::pair<std::size_t, std::size_t>> contact_pairs(const PatchType& type) {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   for (std::size_t a = 0; a < type.fragments.size(); ++a) {

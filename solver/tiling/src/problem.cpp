@@ -60,6 +60,7 @@ Problem::Problem(std::shared_ptr<const PatchPrecompute> shared, const PatchLibra
   } else {
     presence_span = {span.horizon_t0, span.horizon_t1, span.horizon_t0, span.horizon_t1};
   }
+  max_speed_m_s = speed_limit(library, options.limits.speed_ratio);
   const double margin_s = 2 * max_half_duration_s + options.search.jitter_time_end_s + options.match.time_s;
   for (const Obstacle& o : environment.scene.obstacles) {
     obstacle_bounds.push_back(bounds_over(o, index_region.t0 - margin_s, index_region.t1 + margin_s));

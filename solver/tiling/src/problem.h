@@ -79,6 +79,7 @@ struct Problem {
   PresenceSpan presence_span;           ///< what the density bins cover (presence.h)
   TimeWindow window;                    ///< as given (the whole region's span when not windowed)
   std::vector<Eigen::AlignedBox2d> obstacle_bounds;  ///< per obstacle, over the grids' time span and margins
+  double max_speed_m_s = 0;             ///< no deformed segment is faster (speed_limit(), patch.h)
 
   /// The end of fragment `f` of `paths` (first or last sample) with its pose class.
   [[nodiscard]] EndPoint end_point(std::size_t type, const std::vector<Path>& paths, std::size_t f, bool is_exit) const;

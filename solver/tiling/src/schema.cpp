@@ -24,6 +24,9 @@ void describe(OptionBinder& b, Options& o) {
     o.limits.frame_period_s = 1.0 / rate;
     l.field({.key = "bend_min_segment", .unit = "m", .range = Range::non_negative(), .help = "shorter segments are not checked for bend"},
             o.limits.bend_min_segment_m);
+    l.field({.key = "speed_ratio", .range = Range::non_negative(),
+             .help = "no deformed segment faster than this times the library's fastest (0: the paper's limits only)"},
+            o.limits.speed_ratio);
   });
   b.section("match", [&](OptionBinder& m) {
     m.field({.key = "distance", .unit = "m", .range = Range::positive(), .help = "an exit matches an entry this close"}, o.match.distance_m);
@@ -75,6 +78,9 @@ void describe(OptionBinder& b, Options& o) {
 
 void describe(OptionBinder& b, LayoutOptions& o) {
   b.field({.key = "frame_rate", .unit = "Hz", .range = Range::positive(), .help = "the characters' frames"}, o.frame_rate_hz);
+  angle_in_degrees(b, {.key = "max_facing_rate", .unit = "deg/s", .range = Range::non_negative(),
+                       .help = "the fastest a facing turns (0: as the patches' headings, the paper's output)"},
+                   o.max_facing_rate_rad_s);
   std::vector<std::int64_t> repeat(o.repeat.begin(), o.repeat.end());
   b.field({.key = "repeat", .range = Range::closed(1, 1000), .help = "copies of a repeating tile per axis (x, y, t)", .length = 3}, repeat);
   for (std::size_t a = 0; a < 3 && a < repeat.size(); ++a) o.repeat[a] = static_cast<int>(repeat[a]);

@@ -418,7 +418,7 @@ bool Stitcher::valid(const Attempt& attempt) {
   for (const Tested& t : tested) {
     if (t.id == fresh && change.links.empty()) continue;
     for (std::size_t f = 0; f < t.type->fragments.size(); ++f) {
-      if (!within_limits(t.type->fragments[f], (*t.paths)[f], limits)) return false;
+      if (!within_limits(t.type->fragments[f], (*t.paths)[f], limits, problem_.max_speed_m_s)) return false;
     }
   }
 

@@ -26,7 +26,8 @@ namespace throng::tiling {
 namespace {
 
 constexpr double minus_infinity = -std::numeric_limits<double>::infinity();
-constexpr char magic[8] = {'T', 'H', 'R', 'W', 'I', 'N', '0', '2'};  // 02: samples carry heading and action
+// 02: samples carry heading and action; 03: walks carry the facing shown (the facing-rate limit)
+constexpr char magic[8] = {'T', 'H', 'R', 'W', 'I', 'N', '0', '3'};
 
 // An instance carried into the next window, with its id in the delivered tiling once it is final (−1 before).
 struct Carried {
@@ -95,6 +96,7 @@ std::uint64_t fingerprint_of(const PatchLibrary& library, const Environment& env
   f.add(window.window_s);
   f.add(window.lookahead_s);
   f.add(window.frame_rate_hz);
+  f.add(window.max_facing_rate_rad_s);
   f.add(options.density.per_m2);
   f.add(options.density.zones.size());
   f.add(options.density.tolerance);
@@ -190,7 +192,8 @@ std::tuple<std::size_t, double, double, std::size_t> score(const ChainReport& r)
 struct WindowedTiler::Impl {
   Impl(const PatchLibrary& lib, const Environment& env, const Options& opts, const WindowOptions& win)
       : library((check(lib, env, opts, win), lib)), environment(env), options(opts), window(win),
-        stream(library, *environment.scene.region, window.frame_rate_hz) {
+        stream(library, *environment.scene.region, window.frame_rate_hz,
+               max_turn_per_frame(LayoutOptions{window.frame_rate_hz, {1, 1, 1}, window.max_facing_rate_rad_s})) {
     const Region& r = *environment.scene.region;
     for (double t = r.t0; t < r.t1 - 1e-9 * window.window_s; t = r.t0 + static_cast<double>(seams.size()) * window.window_s) {
       seams.push_back(t);
@@ -422,7 +425,7 @@ void WindowedTiler::Impl::load(const std::vector<std::byte>& in) {
   }
   if (r.get<std::uint64_t>() != fingerprint) {
     throw InputError("windowed tiling state: made by a run with another library, region, obstacles, window, frame "
-                     "rate, density, chain count or seed: resume with the job that made it");
+                     "rate, facing rate, density, chain count or seed: resume with the job that made it");
   }
   next_window = r.get<std::uint64_t>();
   freeze = r.get<double>();

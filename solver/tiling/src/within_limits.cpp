@@ -13,7 +13,8 @@ double turn(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
 
 }  // namespace
 
-bool within_limits(const Fragment& fragment, const Path& path, const DeformationLimits& limits) noexcept {
+bool within_limits(const Fragment& fragment, const Path& path, const DeformationLimits& limits,
+                   double max_speed_m_s) noexcept {
   const std::size_t n = fragment.sample_count();
   const std::vector<Eigen::Vector2d>& p = fragment.positions;
   const std::vector<Eigen::Vector2d>& q = path.positions;
@@ -23,7 +24,9 @@ bool within_limits(const Fragment& fragment, const Path& path, const Deformation
     if (!(dt_new > 0)) return false;
     const double frames = dt / limits.frame_period_s;
     if (std::abs(dt_new - dt) > limits.time_shift_s * frames) return false;
-    if (std::abs((q[i + 1] - q[i]).norm() - (p[i + 1] - p[i]).norm()) > limits.stretch_m * frames) return false;
+    const double length = (q[i + 1] - q[i]).norm();
+    if (std::abs(length - (p[i + 1] - p[i]).norm()) > limits.stretch_m * frames) return false;
+    if (length > max_speed_m_s * dt_new) return false;
   }
   for (std::size_t i = 1; i + 1 < n; ++i) {
     const Eigen::Vector2d a = p[i] - p[i - 1], b = p[i + 1] - p[i];

@@ -8,8 +8,9 @@
 
 namespace throng::tiling {
 
-/// True when `path` (a deformation of `fragment`) keeps times strictly increasing and every stretch, bend and
-/// time shift within `limits`.
-[[nodiscard]] bool within_limits(const Fragment& fragment, const Path& path, const DeformationLimits& limits) noexcept;
+/// True when `path` (a deformation of `fragment`) keeps times strictly increasing, every stretch, bend and
+/// time shift within `limits` and every segment's speed at most `max_speed_m_s` (speed_limit(), patch.h).
+[[nodiscard]] bool within_limits(const Fragment& fragment, const Path& path, const DeformationLimits& limits,
+                                 double max_speed_m_s) noexcept;
 
 }  // namespace throng::tiling

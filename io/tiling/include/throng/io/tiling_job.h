@@ -37,7 +37,8 @@
 //     time: {target: 10, sigma: 25}             # f3 = (t − target)² (s²)
 //     labels: {friendly: 0, hostile: 2}         # f4 per label (absent: 0)
 //     label_sigma: 1                            # σ4
-//   limits: {stretch: 0.03, bend: 7, time_shift: 0.018, frame_rate: 30, bend_min_segment: 0.01}  # per frame
+//   limits: {stretch: 0.03, bend: 7, time_shift: 0.018, frame_rate: 30, bend_min_segment: 0.01,  # per frame
+//            speed_ratio: 1.25}     # no deformed segment faster than this × the library's fastest (0 or ≥ 1; 0: none)
 //   match: {distance: 1.0, angle: 25, time: 0.5}         # when an exit matches an entry
 //   deformation: {anchor_weight: 0.001, deform_neighbours: true, constraint_tolerance: 1e-7}
 //   annealing: {alpha: 0.2, k: 0.03, t_max: 200, t_step: 1, max_failures: 20000, max_proposals: 5000000}
@@ -46,7 +47,8 @@
 //   index: {cell: 1.0, cell_time: 0.5}              # the space-time grid of the validity tests
 //   obstacle_step: 0.1                              # obstacle tests every so many metres ...
 //   obstacle_step_time: 0.05                        # ... and seconds along each path
-//   output: {frame_rate: 10, repeat: [1, 1, 1]}     # the characters' frames; copies of a repeating tile per axis
+//   output: {frame_rate: 10, repeat: [1, 1, 1],     # the characters' frames; copies of a repeating tile per axis
+//            max_facing_rate: 270}                  # deg/s the facing turns at most; 0: the patches' headings
 //
 // Reading a job builds nothing (no dataset is imported, no patch made): the library is built when the job runs
 // (throng/tiling/runner.h prepare()). Errors: what the file says (keys, ranges, unknown built-in patch names, a

@@ -20,6 +20,9 @@
 // angle, a standing character keeps its facing, a bowing row faces its partners. The action at a frame is the
 // patch (type name, fragment prop) of the path segment the frame lies on (the earlier patch at a frame exactly on
 // a join), an index into patch_actions(library).table. Absent frames: orientation NaN, action −1.
+// Beyond the paper, the facing turns at most LayoutOptions::max_facing_rate_rad_s: from frame to frame of an
+// agent's present run it follows the patches' heading, but turns at most that rate × the frame period toward it
+// (laid_pose.h, facing_toward), so patches joined with different headings turn the character on the spot.
 #pragma once
 
 #include <throng/core/crowd_motion.h>
@@ -29,6 +32,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace throng::tiling {
@@ -36,6 +40,9 @@ namespace throng::tiling {
 struct LayoutOptions {
   double frame_rate_hz = 10.0;
   std::array<int, 3> repeat{1, 1, 1};  ///< copies per axis (x, y, t); > 1 only on periodic axes
+  /// The fastest a character's facing turns (rad/s; 0: as fast as the patches' headings, the paper's output).
+  /// 270°/s: a person turns about on the spot in under a second.
+  double max_facing_rate_rad_s = 1.5 * std::numbers::pi;
 };
 
 /// Which fragment copies make up an agent, in order.
@@ -59,8 +66,12 @@ struct PatchActions {
 };
 [[nodiscard]] PatchActions patch_actions(const PatchLibrary& library);
 
+/// The largest turn of a character's facing from one frame to the next under `options` (radians; infinity when
+/// max_facing_rate_rad_s is 0). Throws ConfigError for a negative or non-finite facing rate, or a frame rate ≤ 0.
+[[nodiscard]] double max_turn_per_frame(const LayoutOptions& options);
+
 /// Lays out the characters of `tiling` (see the file comment). Throws ConfigError for a repeat count < 1 or
-/// > 1 on a non-periodic axis, or a frame rate ≤ 0.
+/// > 1 on a non-periodic axis, a frame rate ≤ 0, or a negative or non-finite facing rate.
 [[nodiscard]] Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Region& region,
                                  const LayoutOptions& options);
 

@@ -13,7 +13,8 @@
 //                   fragments a connection joins and, within one instance, the pairs its patch itself brings
 //                   into contact (patch.h contact_pairs, recomputed here)
 //   obstacle        no capsule closer to an obstacle than its radius at the sampled points
-//   deformation     per-frame stretch, bend and time-shift limits against the undeformed patch (options.h);
+//   deformation     per-frame stretch, bend and time-shift limits against the undeformed patch, and the speed
+//                   limit (speed_ratio × the library's fastest segment) (options.h);
 //                   times strictly increasing
 //   interpersonal   the patch's interpersonal constraints still hold (relative position in the instance frame,
 //                   time difference)

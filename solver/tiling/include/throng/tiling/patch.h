@@ -91,6 +91,14 @@ struct PatchLibrary {
 /// Exact on the linearly interpolated paths.
 [[nodiscard]] std::vector<std::pair<std::size_t, std::size_t>> contact_pairs(const PatchType& type);
 
+/// The fastest segment of any fragment of `library` (m/s): distance over time between consecutive samples.
+[[nodiscard]] double fastest_speed(const PatchLibrary& library);
+
+/// The speed no deformed segment may exceed under `speed_ratio` (DeformationLimits): that times the library's
+/// fastest segment, or infinity when speed_ratio is 0 or no patch moves (a library of standing patches has no
+/// speed to keep to).
+[[nodiscard]] double speed_limit(const PatchLibrary& library, double speed_ratio);
+
 /// Re-expresses every type in its canonical frame, which the preference function (Eq. 7) and the instance
 /// transforms refer to: origin at the centroid of all samples, +x along the mean travel direction (sum over
 /// character fragments of exit − entry; the mean entry heading when nobody travels), time origin at the middle of

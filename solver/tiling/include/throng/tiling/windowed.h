@@ -26,8 +26,9 @@
 //     whole resumable state (WindowedTiler::state()), a few hundred instances: memory does not grow with the
 //     horizon.
 //
-// Frames: as lay_out (characters.h) would make them from the whole delivered tiling with repeat 1 (one agent per
-// maximal present piece of a chain, frames t0 + f / frame_rate_hz, the last at t1), streamed: agent ids are given
+// Frames: as lay_out (characters.h) would make them from the whole delivered tiling with repeat 1 and the same
+// max_facing_rate (one agent per maximal present piece of a chain, frames t0 + f / frame_rate_hz, the last at
+// t1), streamed: agent ids are given
 // in the order lay_out gives them (first frame, then the chain's head fragment copy, then the piece) and stay the
 // same across windows. One difference: an agent's radius is the largest of the fragments it has walked up to the
 // end of the delivered window, not of its whole chain (a character who picks up a box later widens then).
@@ -62,6 +63,7 @@ namespace throng::tiling {
 struct WindowOptions {
   double window_s = 60.0;
   double frame_rate_hz = 10.0;  ///< delivered frames
+  double max_facing_rate_rad_s = LayoutOptions{}.max_facing_rate_rad_s;  ///< as lay_out's (characters.h)
   /// Seconds beyond its end a window tiles provisionally (see the file comment); negative: half the region's
   /// larger side walked at DensityOptions::projection_speed_mps plus the longest patch, at most a window.
   double lookahead_s = -1.0;
