@@ -1,0 +1,69 @@
+#include "filtered_chunks.h"
+
+#include <throng/core/errors.h>
+#include <throng/core/parallel.h>
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace throng::h5::detail {
+namespace {
+
+// Chunks compressed before they are written: enough tasks for every thread, a bounded buffer (≈ 32 × 256 KiB
+// in and out).
+constexpr std::uint64_t batch_chunks = 32;
+
+// The shuffle filter (H5Z_filter_shuffle): byte j of element i goes to position j × n + i, n elements.
+void shuffle(const unsigned char* in, std::size_t bytes, std::size_t element_size, unsigned char* out) {
+  const std::size_t n = bytes / element_size;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < element_size; ++j) out[j * n + i] = in[i * element_size + j];
+  }
+}
+
+}  // namespace
+
+void write_filtered_chunks(hid_t dataset, int rank, const std::byte* data, const ChunkedLayout& layout, const std::string& where) {
+  const std::uint64_t chunk_bytes = layout.chunk_rows * layout.row_bytes;
+  const std::uint64_t chunks = (layout.rows + layout.chunk_rows - 1) / layout.chunk_rows;
+  for (std::uint64_t first = 0; first < chunks; first += batch_chunks) {
+    const std::uint64_t count = std::min(batch_chunks, chunks - first);
+    std::vector<std::vector<unsigned char>> packed(count);
+    std::vector<int> status(count, Z_OK);
+    parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
+      std::vector<unsigned char> padded(chunk_bytes), shuffled(chunk_bytes);
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint64_t row0 = (first + k) * layout.chunk_rows;
+        const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
+        const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
+        const unsigned char* chunk = source;
+        if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes
+          std::memcpy(padded.data(), source, rows * layout.row_bytes);
+          std::fill(padded.begin() + static_cast<std::ptrdiff_t>(rows * layout.row_bytes), padded.end(), 0);
+          chunk = padded.data();
+        }
+        if (layout.element_size > 1) {
+          shuffle(chunk, chunk_bytes, layout.element_size, shuffled.data());
+          chunk = shuffled.data();
+        }
+        uLongf size = compressBound(static_cast<uLong>(chunk_bytes));
+        packed[k].resize(size);
+        status[k] = compress2(packed[k].data(), &size, chunk, static_cast<uLong>(chunk_bytes), layout.level);
+        packed[k].resize(size);
+      }
+    });
+    for (std::uint64_t k = 0; k < count; ++k) {
+      if (status[k] != Z_OK) throw IoError("cannot write " + where + ": zlib failed to compress a chunk");
+      std::vector<hsize_t> offset(static_cast<std::size_t>(rank), 0);
+      offset[0] = (first + k) * layout.chunk_rows;
+      if (H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), packed[k].size(), packed[k].data()) < 0) {
+        throw IoError("cannot write " + where);
+      }
+    }
+  }
+}
+
+}  // namespace throng::h5::detail
