@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace throng::h5::detail {
@@ -26,7 +28,11 @@ void shuffle(const unsigned char* in, std::size_t bytes, std::size_t element_siz
 
 }  // namespace
 
-void write_filtered_chunks(hid_t dataset, int rank, const std::byte* data, const ChunkedLayout& layout, const std::string& where) {
+void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,
+                   const std::function<void(std::uint64_t first_row, const std::vector<unsigned char>& bytes)>& write) {
+  if (layout.element_size == 0 || layout.row_bytes % layout.element_size != 0 || layout.chunk_rows == 0) {
+    throw std::logic_error("filter_chunks: rows of whole elements and chunks of at least one row expected");
+  }
   const std::uint64_t chunk_bytes = layout.chunk_rows * layout.row_bytes;
   const std::uint64_t chunks = (layout.rows + layout.chunk_rows - 1) / layout.chunk_rows;
   for (std::uint64_t first = 0; first < chunks; first += batch_chunks) {
@@ -34,34 +40,30 @@ void write_filtered_chunks(hid_t dataset, int rank, const std::byte* data, const
     std::vector<std::vector<unsigned char>> packed(count);
     std::vector<int> status(count, Z_OK);
     parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
-      std::vector<unsigned char> padded(chunk_bytes), shuffled(chunk_bytes);
+      std::vector<unsigned char> padded, shuffled(layout.element_size > 1 ? chunk_bytes : 0);
+      std::vector<unsigned char> out(compressBound(static_cast<uLong>(chunk_bytes)));
       for (std::size_t k = begin; k < end; ++k) {
         const std::uint64_t row0 = (first + k) * layout.chunk_rows;
         const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
         const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
         const unsigned char* chunk = source;
-        if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes
+        if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes (libhdf5's fill)
+          padded.assign(chunk_bytes, 0);
           std::memcpy(padded.data(), source, rows * layout.row_bytes);
-          std::fill(padded.begin() + static_cast<std::ptrdiff_t>(rows * layout.row_bytes), padded.end(), 0);
           chunk = padded.data();
         }
         if (layout.element_size > 1) {
           shuffle(chunk, chunk_bytes, layout.element_size, shuffled.data());
           chunk = shuffled.data();
         }
-        uLongf size = compressBound(static_cast<uLong>(chunk_bytes));
-        packed[k].resize(size);
-        status[k] = compress2(packed[k].data(), &size, chunk, static_cast<uLong>(chunk_bytes), layout.level);
-        packed[k].resize(size);
+        uLongf size = static_cast<uLongf>(out.size());
+        status[k] = compress2(out.data(), &size, chunk, static_cast<uLong>(chunk_bytes), layout.level);
+        if (status[k] == Z_OK) packed[k].assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(size));
       }
     });
     for (std::uint64_t k = 0; k < count; ++k) {
-      if (status[k] != Z_OK) throw IoError("cannot write " + where + ": zlib failed to compress a chunk");
-      std::vector<hsize_t> offset(static_cast<std::size_t>(rank), 0);
-      offset[0] = (first + k) * layout.chunk_rows;
-      if (H5Dwrite_chunk(dataset, H5P_DEFAULT, 0, offset.data(), packed[k].size(), packed[k].data()) < 0) {
-        throw IoError("cannot write " + where);
-      }
+      if (status[k] != Z_OK) throw IoError("cannot write " + where + ": zlib failed to compress a chunk (status " + std::to_string(status[k]) + ")");
+      write((first + k) * layout.chunk_rows, packed[k]);
     }
   }
 }

@@ -2,16 +2,16 @@
 //
 // libhdf5 runs a dataset's filters on one thread, chunk after chunk: zlib was 60 % of `throng sketch` at 6,000
 // agents. Here each chunk goes through the same pipeline libhdf5 would run (the shuffle filter's byte transpose,
-// then zlib's compress2 at the dataset's level) on its own task (throng::parallel_for), and is handed to libhdf5
-// as it is (H5Dwrite_chunk), in chunk order. Every chunk's bytes depend on its rows alone, so the file is the same
+// then zlib's compress2 at the dataset's level) on its own task (throng::parallel_for), and is handed in chunk
+// order to the caller, who writes it as it is (H5Dwrite_chunk). Every chunk's bytes depend on its rows alone, so the file is the same
 // whatever the thread count, and any HDF5 reader decodes it as one written by H5Dwrite.
 #pragma once
 
-#include <hdf5.h>
-
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace throng::h5::detail {
 
@@ -25,8 +25,10 @@ struct ChunkedLayout {
   int level = 1;
 };
 
-/// Writes `data` (rows × row_bytes bytes, already in the dataset's file type) into `dataset`, created with that
-/// layout and an extent of `rank` axes; `where` names the dataset in errors (IoError).
-void write_filtered_chunks(hid_t dataset, int rank, const std::byte* data, const ChunkedLayout& layout, const std::string& where);
+/// Filters `data` (rows × row_bytes bytes, already in the dataset's file type) chunk by chunk as a dataset of that
+/// layout stores it, and calls write(first row of the chunk, its filtered bytes) for every chunk in order.
+/// IoError naming `where` when zlib fails; std::logic_error for a row that is not whole elements.
+void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,
+                   const std::function<void(std::uint64_t first_row, const std::vector<unsigned char>& bytes)>& write);
 
 }  // namespace throng::h5::detail

@@ -147,6 +147,7 @@ Handle dataset_properties(const std::vector<std::uint64_t>& shape, std::size_t e
     std::vector<hsize_t> chunk(shape.begin(), shape.end());
     chunk[0] = rows;
     H5Pset_chunk(p.id(), static_cast<int>(chunk.size()), chunk.data());
+    // Exactly these two filters, in this order: filter_chunks (filtered_chunks.h) applies the same pipeline.
     H5Pset_shuffle(p.id());
     H5Pset_deflate(p.id(), deflate_level);
     if (chunked) *chunked = {shape[0], row, rows, element_size, deflate_level};
@@ -168,8 +169,14 @@ void write_numeric(const Group& g, const std::string& name, const std::vector<T>
   if (count == 0) return;
   // Compressed, and the memory type is the file's (no conversion): the chunks are filtered in parallel.
   if (chunked.chunk_rows > 0 && H5Tequal(memory_type, file_type) > 0) {
-    detail::write_filtered_chunks(set.id(), static_cast<int>(shape.size()), reinterpret_cast<const std::byte*>(values.data()),
-                                  chunked, g.where(name));
+    std::vector<hsize_t> offset(shape.size(), 0);
+    detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data()), chunked, g.where(name),
+                          [&](std::uint64_t first_row, const std::vector<unsigned char>& bytes) {
+                            offset[0] = first_row;
+                            // Filter mask 0: every filter of the dataset (shuffle, then deflate) was applied.
+                            check(H5Dwrite_chunk(set.id(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
+                                  "cannot write " + g.where(name));
+                          });
     return;
   }
   check(H5Dwrite(set.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "cannot write " + g.where(name));
