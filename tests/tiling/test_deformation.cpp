@@ -169,6 +169,16 @@ void join(JointProblem& jp, const PatchType& ta, std::uint32_t a, std::size_t fa
   jp.time_rows.push_back(t);
 }
 
+// True when check-tiling finds no deformation failure in one undeformed-placed instance of lib's first type
+// whose first path is `path` (in a 40 m box wide enough for it).
+bool checker_accepts_path(const PatchLibrary& lib, const Path& path, const CheckOptions& check) {
+  Tiling t;
+  t.instances.push_back({0, Transform{}, false, {path}});
+  Environment env;
+  env.scene.region = Region{{-20, -20}, {20, 20}, -20, 20, {false, false, false}};
+  return check_tiling(lib, t, env, check).count(FailureKind::deformation) == 0;
+}
+
 }  // namespace
 
 TEST_CASE("the Schur-complement joint solve equals the single concatenated system, and meets Eq. 1-3") {
@@ -324,13 +334,7 @@ TEST_CASE("the deformation limits are per frame of 30 Hz motion: stretch 3 cm, b
   // Each test changes one sample by just under and just over its limit; the checker agrees with the tiler.
   CheckOptions check;
   check.limits = limits;
-  const auto checker_accepts = [&](const Path& p) {
-    Tiling t;
-    t.instances.push_back({0, Transform{}, false, {p}});
-    Environment env;
-    env.scene.region = Region{{-20, -20}, {20, 20}, -20, 20, {false, false, false}};
-    return check_tiling(lib, t, env, check).count(FailureKind::deformation) == 0;
-  };
+  const auto checker_accepts = [&](const Path& p) { return checker_accepts_path(lib, p, check); };
   for (const double scale : {0.99, 1.01}) {
     INFO("scale " << scale);
     const bool within = scale < 1;
@@ -369,13 +373,7 @@ TEST_CASE("beyond the paper, no deformed segment is faster than speed_ratio time
   CHECK(speed_limit(builtin_library({"wait"}), limits.speed_ratio) == std::numeric_limits<double>::infinity());
   const Path rigid = place(lib.types[0], Transform{})[0];
   CheckOptions check;
-  const auto checker_accepts = [&](const Path& p) {
-    Tiling t;
-    t.instances.push_back({0, Transform{}, false, {p}});
-    Environment env;
-    env.scene.region = Region{{-20, -20}, {20, 20}, -20, 20, {false, false, false}};
-    return check_tiling(lib, t, env, check).count(FailureKind::deformation) == 0;
-  };
+  const auto checker_accepts = [&](const Path& p) { return checker_accepts_path(lib, p, check); };
   for (const double scale : {0.99, 1.01}) {
     INFO("scale " << scale);
     const bool within = scale < 1;

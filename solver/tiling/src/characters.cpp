@@ -103,9 +103,7 @@ double max_turn_per_frame(const LayoutOptions& options) {
 }
 
 Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Region& region, const LayoutOptions& options) {
-  if (!(options.frame_rate_hz > 0) || !std::isfinite(options.frame_rate_hz)) {
-    throw ConfigError("output frame rate " + std::to_string(options.frame_rate_hz) + " Hz, expected > 0");
-  }
+  const double max_turn = max_turn_per_frame(options);  // checks the frame rate and the facing rate
   const Eigen::Vector3d L = periods(region);
   Copy lo{0, 0, 0}, hi{0, 0, 0};
   for (int a = 0; a < 3; ++a) {
@@ -130,7 +128,6 @@ Characters lay_out(const PatchLibrary& library, const Tiling& tiling, const Regi
   const auto frames_total = static_cast<std::size_t>(std::floor((t_end - t_begin) * options.frame_rate_hz + 1e-9)) +
                             (region.periodic[2] ? 0 : 1);
   const auto frame_time = [&](std::size_t f) { return t_begin + static_cast<double>(f) / options.frame_rate_hz; };
-  const double max_turn = max_turn_per_frame(options);
   const auto inside = [&](const Eigen::Vector2d& p) {
     for (int a = 0; a < 2; ++a) {
       if (!region.periodic[static_cast<std::size_t>(a)]) continue;
