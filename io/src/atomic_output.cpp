@@ -69,7 +69,17 @@ void write_all(int fd, const char* data, std::size_t size) {
   }
 }
 
+// DeferredInterrupts: how many live, and the signal noted meanwhile (0: none).
+std::atomic<int> defer_depth{0};
+std::atomic<int> deferred_signal{0};
+
 extern "C" void remove_pending_and_exit(int signal) {
+  if (defer_depth.load() > 0) {
+    deferred_signal.store(signal);
+    // The last DeferredInterrupts may have ended between the two loads, after looking for a noted signal: then
+    // nobody will act on this one but this handler.
+    if (defer_depth.load() > 0) return;
+  }
   for (auto& slot : pending) {
     if (slot.state.load() == slot_published) ::unlink(slot.path);
   }
@@ -203,6 +213,28 @@ void AtomicOutput::commit() {
   }
 }
 
+void sync_file(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw IoError(path.string() + ": cannot open to flush it to disk (" + reason(errno) + ")");
+  const int synced = ::fsync(fd) == 0 ? 0 : errno;
+  ::close(fd);
+  if (synced != 0) throw IoError(path.string() + ": cannot flush to disk (" + reason(synced) + ")");
+}
+
+void move_into_place(const std::filesystem::path& from, const std::filesystem::path& target) {
+  check_output_target(target);
+  const auto fail = [&](const std::string& step, int error) { throw IoError(target.string() + ": " + step + " (" + reason(error) + ")"); };
+  sync_file(from);
+  if (::rename(from.c_str(), target.c_str()) != 0) fail("cannot move the finished file into place", errno);
+  const std::filesystem::path folder = target.parent_path().empty() ? std::filesystem::path(".") : target.parent_path();
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir < 0) return;  // moved; the folder's flush is best effort where it cannot be opened
+  const bool flushed = ::fsync(dir) == 0 || errno == EINVAL || errno == EROFS;
+  const int error = errno;
+  ::close(dir);
+  if (!flushed) throw IoError(target.string() + ": written, but its folder cannot be flushed to disk (" + reason(error) + ")");
+}
+
 void install_interrupt_cleanup() {
   static const int signals[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1,
                                 SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF, SIGABRT};
@@ -215,6 +247,14 @@ void install_interrupt_cleanup() {
     sigfillset(&action.sa_mask);  // one cleanup at a time
     ::sigaction(s, &action, nullptr);
   }
+}
+
+DeferredInterrupts::DeferredInterrupts() noexcept { defer_depth.fetch_add(1); }
+
+DeferredInterrupts::~DeferredInterrupts() {
+  if (defer_depth.fetch_sub(1) != 1) return;
+  // A signal arriving from here on finds the depth 0 and acts at once; one noted before is acted on now.
+  if (const int signal = deferred_signal.exchange(0); signal != 0) remove_pending_and_exit(signal);
 }
 
 void set_interrupt_note(int fd, std::string text) {

@@ -1,4 +1,7 @@
 #include "crowd_file_pose.h"
+#include "crowd_file_slots.h"
+
+#include <throng/io/crowd_file_parts.h>
 
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
@@ -17,151 +20,6 @@ namespace throng {
 namespace {
 
 constexpr const char* trajectory_path = "particles/trajectory";
-
-// Obstacle kinds in /parameters/throng/scene/obstacles/kind.
-enum ObstacleKind : std::int32_t { kind_circle = 0, kind_polygon = 1, kind_wall = 2 };
-
-void write_h5md_header(const h5::Group& root, const std::string& version) {
-  h5::Group h5md = root.create_group("h5md");
-  h5md.set_attribute("version", std::vector<std::int32_t>{1, 1});
-  h5md.create_group("author").set_attribute("name", std::string("throng"));
-  h5::Group creator = h5md.create_group("creator");
-  creator.set_attribute("name", std::string("throng"));
-  creator.set_attribute("version", version);
-  h5::Group units = h5md.create_group("modules").create_group("units");
-  units.set_attribute("version", std::vector<std::int32_t>{1, 0});
-  units.set_attribute("system", std::string("SI"));
-}
-
-// Scene layout under /parameters/throng/scene:
-//   obstacles/kind int32[K] (0 circle, 1 convex polygon, 2 wall), obstacles/name string[K],
-//   obstacles/size float64[K] (circle radius, wall thickness, 0 for polygons),
-//   obstacles/vertex_offset int64[K+1] and obstacles/vertices float64[V][2] (circle: its centre; polygon: its
-//   vertices CCW; wall: its two end points), obstacles/motion_offset int64[K+1] and obstacles/motion float64[M][4]
-//   (time, translation x, translation y, angle) — no rows for a static obstacle;
-//   region float64[6] (min x, min y, max x, max y, t0, t1) and region_periodic int32[3] when a region is set.
-void write_scene(const h5::Group& parameters, const Scene& scene) {
-  h5::Group g = parameters.create_group("scene");
-  if (!scene.obstacles.empty()) {
-    h5::Group o = g.create_group("obstacles");
-    std::vector<std::int32_t> kind;
-    std::vector<std::string> name;
-    std::vector<double> size, vertices, motion;
-    std::vector<std::int64_t> vertex_offset{0}, motion_offset{0};
-    for (const Obstacle& ob : scene.obstacles) {
-      name.push_back(ob.name);
-      std::visit(
-          [&](const auto& s) {
-            using S = std::decay_t<decltype(s)>;
-            if constexpr (std::is_same_v<S, Circle>) {
-              kind.push_back(kind_circle);
-              size.push_back(s.radius);
-              vertices.insert(vertices.end(), {s.center.x(), s.center.y()});
-            } else if constexpr (std::is_same_v<S, ConvexPolygon>) {
-              kind.push_back(kind_polygon);
-              size.push_back(0.0);
-              for (const auto& v : s.vertices) vertices.insert(vertices.end(), {v.x(), v.y()});
-            } else {
-              kind.push_back(kind_wall);
-              size.push_back(s.thickness);
-              vertices.insert(vertices.end(), {s.a.x(), s.a.y(), s.b.x(), s.b.y()});
-            }
-          },
-          ob.shape);
-      vertex_offset.push_back(static_cast<std::int64_t>(vertices.size() / 2));
-      for (const PoseKey& k : ob.motion) motion.insert(motion.end(), {k.time, k.translation.x(), k.translation.y(), k.angle});
-      motion_offset.push_back(static_cast<std::int64_t>(motion.size() / 4));
-    }
-    const std::uint64_t K = scene.obstacles.size();
-    o.write("kind", kind, {K});
-    o.write("name", name);
-    o.write("size", size, {K});
-    o.write("vertex_offset", vertex_offset, {K + 1});
-    o.write("vertices", vertices, {vertices.size() / 2, 2});
-    o.write("motion_offset", motion_offset, {K + 1});
-    o.write("motion", motion, {motion.size() / 4, 4});
-  }
-  if (scene.region) {
-    const Region& r = *scene.region;
-    g.write("region", std::vector<double>{r.min.x(), r.min.y(), r.max.x(), r.max.y(), r.t0, r.t1}, {6});
-    g.write("region_periodic", std::vector<std::int32_t>{r.periodic[0], r.periodic[1], r.periodic[2]}, {3});
-  }
-}
-
-Scene read_scene(const h5::Group& parameters) {
-  Scene scene;
-  if (!parameters.has("scene")) return scene;
-  const h5::Group g = parameters.open_group("scene");
-  if (g.has("obstacles")) {
-    const h5::Group o = g.open_group("obstacles");
-    const auto kind = o.read_int32("kind", 1).values;
-    const std::size_t K = kind.size();
-    const auto names = o.read_strings("name");
-    const auto size = o.read_doubles("size", 1).values;
-    const auto vertex_offset = o.read_int64("vertex_offset", 1).values;
-    const auto vertices = o.read_doubles("vertices", 2);
-    const auto motion_offset = o.read_int64("motion_offset", 1).values;
-    const auto motion = o.read_doubles("motion", 2);
-    if (names.size() != K || size.size() != K || vertex_offset.size() != K + 1 || motion_offset.size() != K + 1 ||
-        vertices.shape[1] != 2 || motion.shape[1] != 4) {
-      throw InputError(o.where() + ": obstacle datasets disagree in length (kind has " + std::to_string(K) + " entries)");
-    }
-    const auto V = static_cast<std::int64_t>(vertices.shape[0]);
-    const auto M = static_cast<std::int64_t>(motion.shape[0]);
-    // The obstacles built from the arrays (K of them, V vertices and M pose keys in all), against the limit.
-    const auto bytes = checked_sum(checked_product(K, sizeof(Obstacle) + 32).value_or(UINT64_MAX),
-                                   checked_sum(checked_product(vertices.shape[0], sizeof(Eigen::Vector2d)).value_or(UINT64_MAX),
-                                               checked_product(motion.shape[0], sizeof(PoseKey)).value_or(UINT64_MAX))
-                                       .value_or(UINT64_MAX));
-    o.budget().charge(bytes.value_or(UINT64_MAX), o.where(), std::to_string(K) + " obstacles");
-    for (std::size_t k = 0; k < K; ++k) {
-      const std::int64_t v0 = vertex_offset[k], v1 = vertex_offset[k + 1];
-      const std::int64_t m0 = motion_offset[k], m1 = motion_offset[k + 1];
-      if (v0 < 0 || v1 < v0 || v1 > V || m0 < 0 || m1 < m0 || m1 > M) {
-        throw InputError(o.where("vertex_offset") + ": offsets of obstacle " + std::to_string(k) + " are out of range");
-      }
-      auto vertex = [&](std::int64_t i) {
-        return Eigen::Vector2d(vertices.values[static_cast<std::size_t>(2 * i)], vertices.values[static_cast<std::size_t>(2 * i + 1)]);
-      };
-      Obstacle ob;
-      ob.name = names[k];
-      const std::int64_t count = v1 - v0;
-      auto need = [&](std::int64_t n, const char* what) {
-        if (count != n) throw InputError(o.where("vertices") + ": " + what + " " + std::to_string(k) + " has " + std::to_string(count) + " points");
-      };
-      switch (kind[k]) {
-        case kind_circle: need(1, "circle"); ob.shape = Circle{vertex(v0), size[k]}; break;
-        case kind_wall: need(2, "wall"); ob.shape = Wall{vertex(v0), vertex(v0 + 1), size[k]}; break;
-        case kind_polygon: {
-          ConvexPolygon p;
-          for (std::int64_t i = v0; i < v1; ++i) p.vertices.push_back(vertex(i));
-          ob.shape = std::move(p);
-          break;
-        }
-        default: throw InputError(o.where("kind") + ": unknown obstacle kind " + std::to_string(kind[k]));
-      }
-      for (std::int64_t i = m0; i < m1; ++i) {
-        const double* row = motion.values.data() + 4 * i;
-        ob.motion.push_back({row[0], {row[1], row[2]}, row[3]});
-      }
-      scene.obstacles.push_back(std::move(ob));
-    }
-  }
-  if (g.has("region")) {
-    const auto r = g.read_doubles("region", 1).values;
-    const auto p = g.read_int32("region_periodic", 1).values;
-    if (r.size() != 6 || p.size() != 3) throw InputError(g.where("region") + ": expected 6 bounds and 3 periodic flags");
-    Region region;
-    region.min = {r[0], r[1]};
-    region.max = {r[2], r[3]};
-    region.t0 = r[4];
-    region.t1 = r[5];
-    region.periodic = {p[0] != 0, p[1] != 0, p[2] != 0};
-    scene.region = region;
-  }
-  scene.validate(g.where());
-  return scene;
-}
 
 void write_time_element(const h5::Group& trajectory, const std::string& name, const std::vector<double>& values,
                         std::uint64_t T, std::uint64_t N, std::uint64_t width, bool first, const h5::Layout& layout) {
@@ -186,20 +44,17 @@ void write_time_element(const h5::Group& trajectory, const std::string& name, co
 // than an invented one), and `offset` float64[3], the region's lower corner (z 0). Written after position.
 void write_box(const h5::Group& trajectory, const Scene& scene, std::uint64_t T) {
   const h5::Group box = trajectory.create_group("box");
-  box.set_attribute("dimension", std::int64_t{3});
-  const bool px = scene.region && scene.region->periodic[0], py = scene.region && scene.region->periodic[1];
-  box.set_attribute("boundary", std::vector<std::string>{px ? "periodic" : "none", py ? "periodic" : "none", "none"});
-  if (!px && !py) return;
+  detail::write_box_attributes(box, scene);
+  if (!scene.region || (!scene.region->periodic[0] && !scene.region->periodic[1])) return;
   const Region& r = *scene.region;
   const h5::Group edges = box.create_group("edges");
   edges.link("step", "/particles/trajectory/position/step");
   edges.link("time", "/particles/trajectory/position/time");
-  const std::array<double, 9> frame{r.max.x() - r.min.x(), 0, 0, 0, r.max.y() - r.min.y(), 0, 0, 0, 0};
+  const std::array<double, 9> frame = detail::box_edges_frame(r);
   std::vector<double> value;
   value.reserve(9 * T);
   for (std::uint64_t t = 0; t < T; ++t) value.insert(value.end(), frame.begin(), frame.end());
   edges.write("value", value, {T, 3, 3});
-  box.write("offset", std::vector<double>{r.min.x(), r.min.y(), 0.0}, {3});
 }
 
 // What a file's box says about periodic axes: which of x and y wrap, and the box's lower corner and sides.
@@ -329,137 +184,25 @@ void check_crowd_memory(const h5::Group& trajectory, std::uint64_t T, std::uint6
                                   " bytes");
 }
 
-}  // namespace
-
-void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra, CrowdStorage storage) {
-  const h5::Layout per_frame{storage == CrowdStorage::compressed, 0};
-  const CrowdMotion& m = file.motion;
-  m.validate("output " + path.filename().string());
-  file.scene.validate("output " + path.filename().string());
-  const std::uint64_t T = m.frame_count(), N = m.agent_count();
-  for (const auto& e : file.formation_edges) {
-    if (e[0] < 0 || e[1] < 0 || static_cast<std::uint64_t>(e[0]) >= N || static_cast<std::uint64_t>(e[1]) >= N) {
-      throw InputError("output " + path.filename().string() + ": formation edge (" + std::to_string(e[0]) + ", " +
-                       std::to_string(e[1]) + ") names an agent outside 0.." + std::to_string(N) + "-1");
-    }
+// id/value [T][N] when the file has it (empty otherwise): InputError for another shape.
+std::vector<std::int64_t> read_per_frame_ids(const h5::Group& trajectory, std::uint64_t T, std::uint64_t N) {
+  if (!trajectory.has("id/value")) return {};
+  auto id = trajectory.read_int64("id/value", 2);
+  if (id.shape[0] != T || id.shape[1] != N) {
+    throw InputError(trajectory.where("id/value") + ": has shape [" + std::to_string(id.shape[0]) + "][" +
+                     std::to_string(id.shape[1]) + "], expected [" + std::to_string(T) + "][" + std::to_string(N) + "]");
   }
-
-  AtomicOutput output(path);
-  {
-    h5::File f = h5::File::create(output.descriptor_path(), path.filename().string());
-    {
-      const h5::Group root = f.root();
-      write_h5md_header(root, file.provenance.program_version);
-
-      const h5::Group trajectory = root.create_group("particles").create_group("trajectory");
-      write_time_element(trajectory, "position", m.positions, T, N, 3, true, per_frame);
-      const h5::Group position = trajectory.open_group("position");
-      position.write("time", m.times, {T});
-      position.set_attribute_on("time", "unit", "s");
-      write_box(trajectory, file.scene, T);
-      if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false, per_frame);
-      detail::write_pose_elements(trajectory, m, per_frame);
-
-      std::vector<std::int64_t> per_frame_id(T * N);
-      for (std::uint64_t t = 0; t < T; ++t) {
-        for (std::uint64_t n = 0; n < N; ++n) per_frame_id[t * N + n] = m.present(t, n) ? m.ids[n] : -1;
-      }
-      h5::Group id = trajectory.create_group("id");
-      id.link("step", "/particles/trajectory/position/step");
-      id.link("time", "/particles/trajectory/position/time");
-      id.write("value", per_frame_id, {T, N}, per_frame);
-      trajectory.write("species", m.species, {N});
-
-      if (!file.formation_edges.empty()) {
-        const h5::Group connectivity = root.create_group("connectivity");
-        std::vector<std::int32_t> edges;
-        for (const auto& e : file.formation_edges) edges.insert(edges.end(), {e[0], e[1]});
-        connectivity.write("formation_edges", edges, {file.formation_edges.size(), 2});
-        connectivity.set_reference_attribute_on("formation_edges", "particles_group", "/particles/trajectory");
-      }
-
-      const h5::Group parameters = root.create_group("parameters").create_group("throng");
-      parameters.set_attribute("format_version", crowd_format_version);
-      parameters.set_attribute("program", std::string("throng"));
-      parameters.set_attribute("program_version", file.provenance.program_version);
-      parameters.set_attribute("command_line", file.provenance.command_line);
-      parameters.set_attribute("options", file.provenance.options);
-      parameters.set_attribute("seed", file.provenance.seed);
-      parameters.set_attribute("inputs", file.provenance.inputs);
-      parameters.set_attribute("credits", file.provenance.credits);
-      const h5::Group agents = parameters.create_group("agents");
-      agents.write("id", m.ids, {N});
-      agents.write("radius", m.radii, {N});
-      write_scene(parameters, file.scene);
-      if (extra) extra(parameters);
-    }
-    f.close();
-  }
-  output.commit();
+  return std::move(id.values);
 }
 
-h5::Group open_throng_parameters(const h5::File& file) { return file.root().open_group("parameters/throng"); }
-
-CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits) {
-  return read_crowd_file(h5::File::open(path, limits));
-}
-
-CrowdFile read_crowd_file(const h5::File& f) {
-  const h5::Group root = f.root();
-  CrowdFile out;
-  CrowdMotion& m = out.motion;
-
-  std::int64_t version = crowd_format_version;
-  if (root.has("parameters/throng")) {
-    const h5::Group parameters = root.open_group("parameters/throng");
-    const auto v = parameters.int_attribute("format_version");
-    if (v.size() != 1) throw InputError(parameters.where() + ": missing attribute format_version");
-    version = v.front();
-    if (version != crowd_format_version) {
-      throw InputError(parameters.where() + ": unknown format version " + std::to_string(version) +
-                       " (this throng reads version " + std::to_string(crowd_format_version) + ")");
-    }
-  }
-  if (!root.has("h5md")) throw InputError(root.where("h5md") + ": missing group; not an H5MD crowd file");
-  const h5::Group trajectory = root.open_group(trajectory_path);
-
-  const std::vector<std::uint64_t> shape = trajectory.shape("position/value");
-  if (shape.size() != 3) {
-    throw InputError(trajectory.where("position/value") + ": has rank " + std::to_string(shape.size()) + ", expected 3");
-  }
-  if (shape[2] != 3) {
-    throw InputError(trajectory.where("position/value") + ": has shape [" + std::to_string(shape[0]) + "][" +
-                     std::to_string(shape[1]) + "][" + std::to_string(shape[2]) + "], expected [frames][agents][3]");
-  }
+// The classic layout, one agent per column: per-agent ids, radii, species and presence, then velocities and the
+// pose elements. `m` holds the times and positions [T][N][3] (`shape`) as read; `per_frame_id` is id/value
+// (empty when the file has none).
+void read_agent_columns(const h5::Group& root, const h5::Group& trajectory, const std::vector<std::uint64_t>& shape,
+                        const std::vector<std::int64_t>& per_frame_id, CrowdMotion& m) {
   const std::uint64_t T = shape[0], N = shape[1];
-  check_crowd_memory(trajectory, T, N);
-  auto position = trajectory.read_doubles("position/value", 3);
-  auto time = trajectory.read_doubles("position/time", 1);
-  if (time.shape[0] != T) {
-    throw InputError(trajectory.where("position/time") + ": has " + std::to_string(time.shape[0]) + " entries for " +
-                     std::to_string(T) + " frames of position/value");
-  }
-  m.times = std::move(time.values);
-  m.positions = std::move(position.values);
-  for (std::uint64_t t = 0; t < T; ++t) {
-    if (!std::isfinite(m.times[t])) throw InputError(trajectory.where("position/time") + ": frame " + std::to_string(t) + " has a non-finite time");
-    if (t > 0 && !(m.times[t] > m.times[t - 1])) {
-      throw InputError(trajectory.where("position/time") + ": times not increasing at frame " + std::to_string(t) + " (" +
-                       std::to_string(m.times[t - 1]) + " then " + std::to_string(m.times[t]) + ")");
-    }
-  }
-
   // Per-agent ids: from /parameters/throng/agents/id when present, else from the first present frame of id/value.
   m.ids.assign(N, -1);
-  std::vector<std::int64_t> per_frame_id;
-  if (trajectory.has("id/value")) {
-    auto id = trajectory.read_int64("id/value", 2);
-    if (id.shape[0] != T || id.shape[1] != N) {
-      throw InputError(trajectory.where("id/value") + ": has shape [" + std::to_string(id.shape[0]) + "][" +
-                       std::to_string(id.shape[1]) + "], expected [" + std::to_string(T) + "][" + std::to_string(N) + "]");
-    }
-    per_frame_id = std::move(id.values);
-  }
   const bool ours = root.has("parameters/throng/agents");
   if (ours) {
     const h5::Group agents = root.open_group("parameters/throng/agents");
@@ -523,7 +266,11 @@ CrowdFile read_crowd_file(const h5::File& f) {
     m.velocities = std::move(velocity.values);
   }
   detail::read_pose_elements(trajectory, m);
+}
 
+// /connectivity/formation_edges of a file with N agent columns (none when absent).
+std::vector<std::array<std::int32_t, 2>> read_formation_edges(const h5::Group& root, std::uint64_t N) {
+  std::vector<std::array<std::int32_t, 2>> out;
   if (root.has("connectivity/formation_edges")) {
     const auto edges = root.open_group("connectivity").read_int32("formation_edges", 2);
     if (edges.shape[1] != 2) throw InputError(root.where("connectivity/formation_edges") + ": expected shape [edges][2]");
@@ -532,8 +279,123 @@ CrowdFile read_crowd_file(const h5::File& f) {
       if (a < 0 || b < 0 || static_cast<std::uint64_t>(a) >= N || static_cast<std::uint64_t>(b) >= N) {
         throw InputError(root.where("connectivity/formation_edges") + ": edge " + std::to_string(e) + " names an agent out of range");
       }
-      out.formation_edges.push_back({a, b});
+      out.push_back({a, b});
     }
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_crowd_file(const std::filesystem::path& path, const CrowdFile& file, const ExtraWriter& extra, CrowdStorage storage) {
+  const h5::Layout per_frame{storage == CrowdStorage::compressed, 0};
+  const CrowdMotion& m = file.motion;
+  m.validate("output " + path.filename().string());
+  file.scene.validate("output " + path.filename().string());
+  const std::uint64_t T = m.frame_count(), N = m.agent_count();
+  for (const auto& e : file.formation_edges) {
+    if (e[0] < 0 || e[1] < 0 || static_cast<std::uint64_t>(e[0]) >= N || static_cast<std::uint64_t>(e[1]) >= N) {
+      throw InputError("output " + path.filename().string() + ": formation edge (" + std::to_string(e[0]) + ", " +
+                       std::to_string(e[1]) + ") names an agent outside 0.." + std::to_string(N) + "-1");
+    }
+  }
+
+  AtomicOutput output(path);
+  {
+    h5::File f = h5::File::create(output.descriptor_path(), path.filename().string());
+    {
+      const h5::Group root = f.root();
+      const h5::Group parameters = detail::write_crowd_header(root, file.provenance, file.scene);
+
+      const h5::Group trajectory = root.create_group("particles").create_group("trajectory");
+      write_time_element(trajectory, "position", m.positions, T, N, 3, true, per_frame);
+      const h5::Group position = trajectory.open_group("position");
+      position.write("time", m.times, {T});
+      position.set_attribute_on("time", "unit", "s");
+      write_box(trajectory, file.scene, T);
+      if (!m.velocities.empty()) write_time_element(trajectory, "velocity", m.velocities, T, N, 3, false, per_frame);
+      detail::write_pose_elements(trajectory, m, per_frame);
+
+      std::vector<std::int64_t> per_frame_id(T * N);
+      for (std::uint64_t t = 0; t < T; ++t) {
+        for (std::uint64_t n = 0; n < N; ++n) per_frame_id[t * N + n] = m.present(t, n) ? m.ids[n] : -1;
+      }
+      h5::Group id = trajectory.create_group("id");
+      id.link("step", "/particles/trajectory/position/step");
+      id.link("time", "/particles/trajectory/position/time");
+      id.write("value", per_frame_id, {T, N}, per_frame);
+      trajectory.write("species", m.species, {N});
+
+      if (!file.formation_edges.empty()) {
+        const h5::Group connectivity = root.create_group("connectivity");
+        std::vector<std::int32_t> edges;
+        for (const auto& e : file.formation_edges) edges.insert(edges.end(), {e[0], e[1]});
+        connectivity.write("formation_edges", edges, {file.formation_edges.size(), 2});
+        connectivity.set_reference_attribute_on("formation_edges", "particles_group", "/particles/trajectory");
+      }
+
+      const h5::Group agents = parameters.create_group("agents");
+      agents.write("id", m.ids, {N});
+      agents.write("radius", m.radii, {N});
+      if (extra) extra(parameters);
+    }
+    f.close();
+  }
+  output.commit();
+}
+
+h5::Group open_throng_parameters(const h5::File& file) { return file.root().open_group("parameters/throng"); }
+
+CrowdFile read_crowd_file(const std::filesystem::path& path, const ReadLimits& limits) {
+  return read_crowd_file(h5::File::open(path, limits));
+}
+
+CrowdFile read_crowd_file(const h5::File& f) {
+  const h5::Group root = f.root();
+  CrowdFile out;
+  CrowdMotion& m = out.motion;
+
+  detail::check_format_version(root);
+  if (!root.has("h5md")) throw InputError(root.where("h5md") + ": missing group; not an H5MD crowd file");
+  const h5::Group trajectory = root.open_group(trajectory_path);
+
+  const std::vector<std::uint64_t> shape = trajectory.shape("position/value");
+  if (shape.size() != 3) {
+    throw InputError(trajectory.where("position/value") + ": has rank " + std::to_string(shape.size()) + ", expected 3");
+  }
+  if (shape[2] != 3) {
+    throw InputError(trajectory.where("position/value") + ": has shape [" + std::to_string(shape[0]) + "][" +
+                     std::to_string(shape[1]) + "][" + std::to_string(shape[2]) + "], expected [frames][agents][3]");
+  }
+  const std::uint64_t T = shape[0], N = shape[1];
+  check_crowd_memory(trajectory, T, N);
+  auto position = trajectory.read_doubles("position/value", 3);
+  auto time = trajectory.read_doubles("position/time", 1);
+  if (time.shape[0] != T) {
+    throw InputError(trajectory.where("position/time") + ": has " + std::to_string(time.shape[0]) + " entries for " +
+                     std::to_string(T) + " frames of position/value");
+  }
+  m.times = std::move(time.values);
+  m.positions = std::move(position.values);
+  for (std::uint64_t t = 0; t < T; ++t) {
+    if (!std::isfinite(m.times[t])) throw InputError(trajectory.where("position/time") + ": frame " + std::to_string(t) + " has a non-finite time");
+    if (t > 0 && !(m.times[t] > m.times[t - 1])) {
+      throw InputError(trajectory.where("position/time") + ": times not increasing at frame " + std::to_string(t) + " (" +
+                       std::to_string(m.times[t - 1]) + " then " + std::to_string(m.times[t]) + ")");
+    }
+  }
+
+  // A column is an agent (the classic layout) unless id/value reuses it for several agents (crowd_file.h).
+  std::vector<std::int64_t> per_frame_id = read_per_frame_ids(trajectory, T, N);
+  if (detail::has_reused_slots(per_frame_id, N)) {
+    if (root.has("connectivity/formation_edges")) {
+      throw InputError(root.where("connectivity/formation_edges") + ": formation edges name columns, and this file's "
+                       "columns are reused slots (id/value holds several agents in one column); not supported");
+    }
+    m = detail::read_slotted_motion(root, trajectory, std::move(m), std::move(per_frame_id), N);
+  } else {
+    read_agent_columns(root, trajectory, shape, per_frame_id, m);
+    out.formation_edges = read_formation_edges(root, N);
   }
 
   if (root.has("parameters/throng")) {
@@ -545,7 +407,7 @@ CrowdFile read_crowd_file(const h5::File& f) {
     p.seed = parameters.unsigned_attribute("seed").value_or(0);
     p.inputs = parameters.string_array_attribute("inputs");
     p.credits = parameters.string_array_attribute("credits");
-    out.scene = read_scene(parameters);
+    out.scene = detail::read_scene(parameters);
   }
   if (const auto box = read_periodic_box(trajectory)) {
     apply_periodic_box(*box, trajectory, m, out.scene);

@@ -12,6 +12,8 @@
 // Both are optional: files without them (older files, methods that fill neither) read with both empty.
 #include "crowd_file_pose.h"
 
+#include <throng/io/crowd_file_parts.h>
+
 #include <throng/core/errors.h>
 
 #include <cmath>
@@ -20,8 +22,6 @@
 
 namespace throng::detail {
 namespace {
-
-const std::vector<std::string> quaternion_components{"x", "y", "z", "w"};
 
 h5::Group create_element(const h5::Group& trajectory, const std::string& name) {
   h5::Group element = trajectory.create_group(name);
@@ -36,7 +36,7 @@ std::string shape_text(const std::vector<std::uint64_t>& shape) {
   return s;
 }
 
-void read_orientations(const h5::Group& trajectory, CrowdMotion& m) {
+void read_orientations(const h5::Group& trajectory, CrowdMotion& m, const ColumnName& name) {
   if (!trajectory.has_group("orientation")) return;
   const h5::Group element = trajectory.open_group("orientation");
   if (element.string_array_attribute("components") != quaternion_components) {
@@ -55,8 +55,7 @@ void read_orientations(const h5::Group& trajectory, CrowdMotion& m) {
       if (!m.present(t, n)) continue;
       const Eigen::Vector4d q = m.orientation(t, n).coeffs();
       if (!q.allFinite() || std::abs(q.norm() - 1.0) > orientation_tolerance) {
-        throw InputError(element.where("value") + ": agent " + std::to_string(m.ids[n]) + " (column " +
-                         std::to_string(n) + ") at frame " + std::to_string(t) +
+        throw InputError(element.where("value") + ": " + name(t, n) + " at frame " + std::to_string(t) +
                          " is present but its orientation is not a finite unit quaternion (|q| = " +
                          std::to_string(q.norm()) + ")");
       }
@@ -64,7 +63,7 @@ void read_orientations(const h5::Group& trajectory, CrowdMotion& m) {
   }
 }
 
-void read_actions(const h5::Group& trajectory, CrowdMotion& m) {
+void read_actions(const h5::Group& trajectory, CrowdMotion& m, const ColumnName& name) {
   if (!trajectory.has_group("action")) return;
   const h5::Group element = trajectory.open_group("action");
   const auto names = element.string_array_attribute("names");
@@ -87,9 +86,9 @@ void read_actions(const h5::Group& trajectory, CrowdMotion& m) {
     for (std::uint64_t n = 0; n < N; ++n) {
       const std::int32_t a = m.action(t, n);
       if (m.present(t, n) && (a < 0 || static_cast<std::size_t>(a) >= names.size())) {
-        throw InputError(element.where("value") + ": agent " + std::to_string(m.ids[n]) + " (column " +
-                         std::to_string(n) + ") at frame " + std::to_string(t) + " has action " + std::to_string(a) +
-                         ", expected 0.." + std::to_string(names.size() - 1) + " (an index into attribute names)");
+        throw InputError(element.where("value") + ": " + name(t, n) + " at frame " + std::to_string(t) +
+                         " has action " + std::to_string(a) + ", expected 0.." + std::to_string(names.size() - 1) +
+                         " (an index into attribute names)");
       }
     }
   }
@@ -107,9 +106,7 @@ void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m, cons
       }
     }
     const h5::Group element = create_element(trajectory, "orientation");
-    element.set_attribute("components", quaternion_components);
-    element.set_attribute("body_frame", std::string("unit quaternion (x, y, z, w) turning the agent's body frame "
-                                                    "(forward +x, left +y, up +z) into the world; NaN where absent"));
+    write_orientation_attributes(element);
     element.write("value", value, {T, N, 4}, layout);
   }
   if (!m.actions.empty()) {
@@ -119,21 +116,18 @@ void write_pose_elements(const h5::Group& trajectory, const CrowdMotion& m, cons
         if (!m.present(t, n)) value[t * N + n] = -1;
       }
     }
-    std::vector<std::string> names, props;
-    for (const ActionKind& a : m.action_table) {
-      names.push_back(a.name);
-      props.push_back(a.prop);
-    }
     const h5::Group element = create_element(trajectory, "action");
-    element.set_attribute("names", names);
-    element.set_attribute("props", props);
+    write_action_attributes(element, m.action_table);
     element.write("value", value, {T, N}, layout);
   }
 }
 
-void read_pose_elements(const h5::Group& trajectory, CrowdMotion& m) {
-  read_orientations(trajectory, m);
-  read_actions(trajectory, m);
+void read_pose_elements(const h5::Group& trajectory, CrowdMotion& m, const ColumnName& name) {
+  const ColumnName by_column = [&m](std::uint64_t, std::uint64_t n) {
+    return "agent " + std::to_string(m.ids[n]) + " (column " + std::to_string(n) + ")";
+  };
+  read_orientations(trajectory, m, name ? name : by_column);
+  read_actions(trajectory, m, name ? name : by_column);
 }
 
 }  // namespace throng::detail

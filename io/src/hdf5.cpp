@@ -6,6 +6,7 @@
 #include "address_space_cap.h"
 #include "filtered_chunks.h"
 #include "global_heap_check.h"
+#include "hdf5_detail.h"
 
 #include <hdf5.h>
 #include <H5PLpublic.h>
@@ -37,22 +38,6 @@ namespace {
 
 static_assert(sizeof(hid_t) == sizeof(Id), "hid_t must be 64-bit (HDF5 ≥ 1.10)");
 
-// HDF5 prints its error stack to stderr by default; we report our own messages instead. Filter plugins are never
-// loaded: a file could otherwise name a plugin that HDF5_PLUGIN_PATH resolves to code run on its data.
-//
-// libhdf5 is never shut down at exit (H5dont_atexit, before its first call): when a write fails (a full disk),
-// H5Fclose fails too and leaves the file's identifier pointing at a half-freed file, which libhdf5 1.10's exit
-// handler (H5F_term_package → H5F__close_cb) then dereferences: the segfault (exit 139) after "disk full" of issue
-// 18. Every file we write is closed explicitly and only committed when that succeeded, so nothing is lost.
-void silence_hdf5() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    H5dont_atexit();
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    H5PLset_loading_state(0);
-  });
-}
-
 // Refuses every external link traversal (the callback runs before the other file is opened).
 herr_t refuse_external_link(const char*, const char*, const char*, const char*, unsigned*, hid_t, void*) { return -1; }
 
@@ -68,18 +53,14 @@ Handle access_properties(hid_t property_class) {
   return p;
 }
 
-// zlib's level for compressed datasets (after shuffle). Measured on `throng sketch configs/sketch-large.yaml --set
-// agents.count=6000 --set duration=60` (601 frames, 2 cores, libhdf5 filtering on one thread, medians of 2):
-// level 4 8.35 s and 122.9 MB, level 3 8.2 s, level 2 6.5 s, level 1 5.8 s and 124.4 MB (+1.3 %); without
-// compression 2.9-3.3 s and 246 MB. Level 1: 30 % off the command for 1.3 % more bytes (formation-hierarchy-1260:
-// 2.48 → 1.96 s). Every reader decodes any level. With the chunks filtered in parallel (filtered_chunks.h) the
-// same command takes 4.20 s (median of 5).
-constexpr int deflate_level = 1;
-
 // Largest expansion of deflate (zlib): 1032 output bytes per input byte at most.
 constexpr std::uint64_t deflate_max_ratio = 1032;
 // A dataset may declare this many bytes beyond what its storage bounds (unwritten datasets read as fill values).
 constexpr std::uint64_t storage_slack_bytes = 64 * 1024;
+
+}  // namespace
+
+namespace detail {
 
 // Why HDF5 failed, for our messages: the outermost and the innermost descriptions of its current error stack (the
 // steps between repeat them); a system error is given by its text alone ("No space left on device"), not by
@@ -113,6 +94,34 @@ void check(herr_t status, const std::string& what) {
   if (status < 0) throw IoError(what + ": " + hdf5_reason());
 }
 
+
+Handle simple_space(const std::vector<std::uint64_t>& shape) {
+  std::vector<hsize_t> dims(shape.begin(), shape.end());
+  return Handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+}
+
+// HDF5 prints its error stack to stderr by default; we report our own messages instead. Filter plugins are never
+// loaded: a file could otherwise name a plugin that HDF5_PLUGIN_PATH resolves to code run on its data.
+//
+// libhdf5 is never shut down at exit (H5dont_atexit, before its first call): when a write fails (a full disk),
+// H5Fclose fails too and leaves the file's identifier pointing at a half-freed file, which libhdf5 1.10's exit
+// handler (H5F_term_package → H5F__close_cb) then dereferences: the segfault (exit 139) after "disk full" of issue
+// 18. Every file we write is closed explicitly and only committed when that succeeded, so nothing is lost.
+void silence_hdf5() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    H5dont_atexit();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    H5PLset_loading_state(0);
+  });
+}
+
+}  // namespace detail
+
+namespace {
+
+using namespace detail;
+
 Handle string_type() {
   Handle t(H5Tcopy(H5T_C_S1));
   H5Tset_size(t.id(), H5T_VARIABLE);
@@ -120,10 +129,6 @@ Handle string_type() {
   return t;
 }
 
-Handle simple_space(const std::vector<std::uint64_t>& shape) {
-  std::vector<hsize_t> dims(shape.begin(), shape.end());
-  return Handle(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-}
 
 Handle untimed_group_properties() {
   Handle p(H5Pcreate(H5P_GROUP_CREATE));
@@ -836,6 +841,22 @@ File File::open(const std::filesystem::path& path, const ReadLimits& limits) {
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.id());
   if (f < 0) throw InputError(path.string() + ": cannot open as HDF5 (" + hdf5_reason() + "); is the file truncated or damaged?");
   return File(Handle(f), path.filename().string(), make_context(path, size, true, limits));
+}
+
+File File::open_for_update(const std::filesystem::path& path, const std::string& display_name) {
+  silence_hdf5();
+  const std::string name = display_name.empty() ? path.filename().string() : display_name;
+  (void)check_input_file(path, "an HDF5 file");
+  if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(name + ": is not an HDF5 file");
+  Handle access(H5Pcreate(H5P_FILE_ACCESS));
+  H5Pset_fclose_degree(access.id(), H5F_CLOSE_STRONG);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, access.id());
+  if (f < 0) throw InputError(name + ": cannot open for writing (" + hdf5_reason() + "); is the file damaged?");
+  return File(Handle(f), name, make_context(path, 0, false, ReadLimits{}));
+}
+
+void File::flush() const {
+  if (H5Fflush(handle_.id(), H5F_SCOPE_GLOBAL) < 0) throw IoError(name_ + ": cannot flush (" + hdf5_reason() + ")");
 }
 
 Group File::root() const {

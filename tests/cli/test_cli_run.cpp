@@ -96,7 +96,7 @@ TEST_CASE("the shipped configs that name other files run from any working direct
     // Tiling jobs are shrunk (as in test_tile_cli); pipelines run as shipped.
     const std::string args = pipeline ? "--quiet run " + entry.path().string()
                                       : "--quiet tile " + entry.path().string() +
-                                            " --set characters=10 --set library.real.max_pair_patches=4"
+                                            " --set characters=10 --set library.real.max_episode_patches=4"
                                             " --set library.real.max_single_patches=4 -o tiled.h5";
     std::string out;
     const int status = test::run_command("cd " + dir.string() + " && " + test::command(args), &out);

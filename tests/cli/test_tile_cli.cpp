@@ -71,7 +71,7 @@ TEST_CASE("every tile config, shrunk, gives a tiling that check-tiling passes") 
                             "--set 'keyframes=[{patch: bow_rows, position: [6, 6], angle: 0, time: 4.5}]'"},
       {"tile-repeating.yaml", "--set characters=15 --set region.time=[0,10]"},
       {"tile-objects.yaml", "--set characters=12"},
-      {"tile-real.yaml", "--set characters=10 --set library.real.max_pair_patches=4 --set library.real.max_single_patches=4"},
+      {"tile-real.yaml", "--set characters=10 --set library.real.max_episode_patches=4 --set library.real.max_single_patches=4"},
   };
   for (const auto& [name, shrink] : configs) {
     INFO(name);
@@ -267,7 +267,7 @@ std::filesystem::path rewrite_zara01(const std::filesystem::path& path, const st
 std::string real_job(const std::string& dataset, const std::string& more = "") {
   return "region: {min: [0, 0], max: [12, 12], time: [0, 20]}\n"
          "library:\n  builtin: [locomotion]\n  real:\n    dataset: " + dataset + "\n"
-         "    max_pair_patches: 4\n    max_single_patches: 4\n" + more +
+         "    max_episode_patches: 4\n    max_single_patches: 4\n" + more +
          "characters: 10\nchains: 2\nannealing: {max_failures: 2000}\n";
 }
 
@@ -329,4 +329,26 @@ TEST_CASE("a tiling library reads its recorded crowd in any format throng import
     CHECK(run("tile " + (dir / "rate.yaml").string() + " --fps -3 -o " + (dir / "rate.h5").string(), &text) == 2);
     CHECK_THAT(text, Contains("--fps") && Contains("library.real.fps"));
   }
+}
+
+TEST_CASE("a library built from the shipped recorded crowd holds groups of three or more and tiles perfectly within human limits") {
+  const auto dir = test::scratch_dir("cli_tile_real_groups");
+  const auto out = dir / "real.h5";
+  REQUIRE(run("--quiet tile " + config("tile-real.yaml") + " -o " + out.string()) == 0);
+  CHECK(run("check-tiling " + out.string()) == 0);
+  std::string motion;
+  CHECK(run("check-motion " + out.string(), &motion) == 0);
+  INFO(motion);
+  // Episodes merged into groups: patches labelled "group" with three or more characters, used by the tiling.
+  const TilingData d = read_tiling_data(out);
+  std::size_t groups = 0, used = 0;
+  for (std::size_t k = 0; k < d.library.types.size(); ++k) {
+    const tiling::PatchType& t = d.library.types[k];
+    if (t.label != "group") continue;
+    CHECK(t.fragments.size() >= 3);
+    ++groups;
+    for (const tiling::Instance& i : d.tiling.instances) used += i.type == k ? 1 : 0;
+  }
+  CHECK(groups >= 3);
+  CHECK(used >= 1);
 }

@@ -196,7 +196,7 @@ TEST_CASE("patches from two synthetic walkers: a pair episode tied at its closes
     m.position(f, 1) = Eigen::Vector3d(6 - 1.2 * t, -0.4, 0);
   }
   RealPatchOptions o;
-  o.reaction_min_mps2 = 0;  // straight walkers do not react: keep the episode anyway
+  o.reaction_min_m2ps2 = 0;  // straight walkers do not react: keep the episode anyway
   const PatchLibrary lib = patches_from_trajectories(m, o);
   std::size_t pairs = 0, singles = 0;
   for (const PatchType& t : lib.types) {
@@ -218,7 +218,7 @@ TEST_CASE("patches from the real zara01 data tile a box perfectly") {
   const auto dir = test::real_data_dir();
   const CrowdFile data = import_crowd(dir / "zara01").crowd;
   RealPatchOptions o;
-  o.max_pair_patches = 6;
+  o.max_episode_patches = 6;
   o.max_single_patches = 6;
   PatchLibrary lib = patches_from_trajectories(data.motion, o);
   std::size_t pairs = 0;

@@ -2,6 +2,7 @@
 #include <throng/core/errors.h>
 #include <throng/io/checked_numbers.h>
 #include <throng/io/crowd_file.h>
+#include <throng/io/crowd_file_parts.h>
 #include <throng/io/tiling_data.h>
 
 #include <algorithm>
@@ -25,14 +26,7 @@ void put_path(std::vector<double>& out, const Path& p) {
 
 namespace throng::tiling {
 
-void write_data(const h5::Group& g, const Run& run) {
-  const PatchLibrary& library = run.library;
-  const TilingResult& result = run.result;
-  const Environment& environment = run.environment;
-  const CheckOptions& check = run.check;
-  const Characters& characters = run.characters;
-  const LayoutOptions& layout = run.layout;
-  // The library.
+void write_library(const h5::Group& g, const PatchLibrary& library) {
   const h5::Group lib = g.create_group("library");
   lib.write("pose_classes", library.pose_classes);
   std::vector<std::string> names, labels;
@@ -68,29 +62,10 @@ void write_data(const h5::Group& g, const Run& run) {
   lib.write("fragment_radius", radius, {F});
   lib.write("samples", samples, {samples.size() / 4, 4});
   lib.write("constraints", constraints, {constraints.size() / 5, 5});
+}
 
-  // The tiling.
-  const Tiling& t = result.tiling;
-  const h5::Group inst = g.create_group("instances");
-  std::vector<std::int64_t> type;
-  std::vector<double> transform, paths;
-  std::vector<std::int32_t> keyframed;
-  for (const Instance& i : t.instances) {
-    type.push_back(static_cast<std::int64_t>(i.type));
-    transform.insert(transform.end(), {i.transform.translation.x(), i.transform.translation.y(), i.transform.angle, i.transform.time_shift});
-    keyframed.push_back(i.keyframed ? 1 : 0);
-    for (const Path& p : i.paths) put_path(paths, p);
-  }
-  const auto I = static_cast<std::uint64_t>(t.instances.size());
-  inst.write("type", type, {I});
-  inst.write("transform", transform, {I, 4});
-  inst.write("keyframed", keyframed, {I});
-  inst.write("paths", paths, {paths.size() / 4, 4}, h5::Layout{true});
-  std::vector<std::int64_t> conn;
-  for (const Connection& c : t.connections) {
-    conn.insert(conn.end(), {c.from.instance, c.from.fragment, c.to.instance, c.to.fragment, c.image[0], c.image[1], c.image[2]});
-  }
-  g.write("connections", conn, {t.connections.size(), 7});
+void write_tile_settings(const h5::Group& g, const Environment& environment, const LayoutOptions& layout,
+                         const CheckOptions& check) {
   const auto zones = [](const std::vector<Zone>& z) {
     std::vector<double> v;
     for (const Zone& zone : z) v.insert(v.end(), {zone.center.x(), zone.center.y(), zone.radius_m, zone.t0, zone.t1});
@@ -98,13 +73,6 @@ void write_data(const h5::Group& g, const Run& run) {
   };
   g.write("sources", zones(environment.sources), {environment.sources.size(), 5});
   g.write("sinks", zones(environment.sinks), {environment.sinks.size(), 5});
-  std::vector<std::int64_t> pieces;
-  for (std::size_t a = 0; a < characters.pieces.size(); ++a) {
-    for (const AgentPiece& p : characters.pieces[a]) {
-      pieces.insert(pieces.end(), {static_cast<std::int64_t>(a), p.fragment.instance, p.fragment.fragment, p.copy[0], p.copy[1], p.copy[2]});
-    }
-  }
-  g.create_group("agents").write("pieces", pieces, {pieces.size() / 6, 6});
   const Region& tile = *environment.scene.region;
   g.write("region", std::vector<double>{tile.min.x(), tile.min.y(), tile.max.x(), tile.max.y(), tile.t0, tile.t1}, {6});
   g.write("region_periodic", std::vector<std::int32_t>{tile.periodic[0], tile.periodic[1], tile.periodic[2]}, {3});
@@ -123,6 +91,45 @@ void write_data(const h5::Group& g, const Run& run) {
   g.set_attribute("match_time", check.match.time_s);
   g.set_attribute("obstacle_step", check.obstacle_step_m);
   g.set_attribute("obstacle_step_time", check.obstacle_step_s);
+}
+
+TilingRows tiling_rows(const std::vector<Instance>& instances, const std::vector<Connection>& connections) {
+  TilingRows rows;
+  for (const Instance& i : instances) {
+    rows.types.push_back(static_cast<std::int64_t>(i.type));
+    rows.transforms.insert(rows.transforms.end(),
+                           {i.transform.translation.x(), i.transform.translation.y(), i.transform.angle, i.transform.time_shift});
+    rows.keyframed.push_back(i.keyframed ? 1 : 0);
+    for (const Path& p : i.paths) put_path(rows.paths, p);
+  }
+  for (const Connection& c : connections) {
+    rows.connections.insert(rows.connections.end(),
+                            {c.from.instance, c.from.fragment, c.to.instance, c.to.fragment, c.image[0], c.image[1], c.image[2]});
+  }
+  return rows;
+}
+
+void write_data(const h5::Group& g, const Run& run) {
+  write_library(g, run.library);
+  const Characters& characters = run.characters;
+  // The tiling.
+  const Tiling& t = run.result.tiling;
+  const h5::Group inst = g.create_group("instances");
+  const TilingRows rows = tiling_rows(t.instances, t.connections);
+  const auto I = static_cast<std::uint64_t>(t.instances.size());
+  inst.write("type", rows.types, {I});
+  inst.write("transform", rows.transforms, {I, 4});
+  inst.write("keyframed", rows.keyframed, {I});
+  inst.write("paths", rows.paths, {rows.paths.size() / 4, 4}, h5::Layout{true});
+  g.write("connections", rows.connections, {t.connections.size(), 7});
+  std::vector<std::int64_t> pieces;
+  for (std::size_t a = 0; a < characters.pieces.size(); ++a) {
+    for (const AgentPiece& p : characters.pieces[a]) {
+      pieces.insert(pieces.end(), {static_cast<std::int64_t>(a), p.fragment.instance, p.fragment.fragment, p.copy[0], p.copy[1], p.copy[2]});
+    }
+  }
+  g.create_group("agents").write("pieces", pieces, {pieces.size() / 6, 6});
+  write_tile_settings(g, run.environment, run.layout, run.check);
 }
 
 }  // namespace throng::tiling
@@ -219,11 +226,15 @@ bool has_tiling_data(const std::filesystem::path& path, const ReadLimits& limits
 
 TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits& limits) {
   TilingData out;
-  // One file, one budget: the crowd stays held while the tiling data is read, both within the limit.
+  // One file, one budget. The frames are not read: the tiling alone is checked.
   const h5::File file = h5::File::open(path, limits);
-  const CrowdFile crowd = read_crowd_file(file);
+  CrowdFile crowd;
+  crowd.scene = detail::read_crowd_scene(file);
   out.environment.scene = crowd.scene;
   const h5::Group params = open_throng_parameters(file);
+  const std::uint64_t agent_count = detail::crowd_agent_count(file);
+  params.budget().charge(checked_product(agent_count, sizeof(std::vector<AgentPiece>)).value_or(UINT64_MAX), params.where("agents"),
+                         std::to_string(agent_count) + " agents' piece lists");
   if (!params.has("tiling")) throw InputError(path.string() + ": no /parameters/throng/tiling (not written by throng tile)");
   const h5::Group g = params.open_group("tiling");
   // The tile (the scene's region is the laid extent) and its own obstacles (the first ones of the scene).
@@ -381,7 +392,7 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   out.environment.sinks = zones("sinks");
   std::uint64_t NP = 0;
   const std::vector<std::int64_t> pieces = ints(g.open_group("agents"), "pieces", 6, &NP);
-  out.pieces.resize(crowd.motion.agent_count());
+  out.pieces.resize(agent_count);
   for (std::size_t k = 0; k < NP; ++k) {
     const std::int64_t* v = pieces.data() + 6 * k;
     if (v[0] < 0 || static_cast<std::size_t>(v[0]) >= out.pieces.size() || v[1] < 0 ||

@@ -72,7 +72,12 @@ void read_library(const ConfigNode& job, TilingJob& parsed) {
     spec.real = true;
     parsed.real_dataset = std::filesystem::absolute(real->at("dataset").as_path()).lexically_normal().string();
   }
-  if (spec.builtin.empty() && !spec.real) lib.fail("give `builtin` patches, `real` patches, or both");
+  if (const auto file = lib.find("file")) {
+    parsed.library_file = std::filesystem::absolute(file->as_path()).lexically_normal().string();
+  }
+  if (spec.builtin.empty() && !spec.real && parsed.library_file.empty()) {
+    lib.fail("give `builtin` patches, `real` patches, a saved library `file`, or several");
+  }
   if (const auto prefs = lib.find("preferences")) {
     for (const std::string& name : prefs->keys()) {
       const ConfigNode v = prefs->at(name);
@@ -85,8 +90,8 @@ void read_library(const ConfigNode& job, TilingJob& parsed) {
 
 // A keyframe's patch must be in the library: checked here when the library holds built-in patches alone (their
 // names are known without building them), when the job runs otherwise.
-void check_patch_name(const ConfigNode& patch, const LibrarySpec& spec) {
-  if (spec.real) return;
+void check_patch_name(const ConfigNode& patch, const LibrarySpec& spec, const std::string& library_file) {
+  if (spec.real || !library_file.empty()) return;
   const std::vector<std::string> names = builtin_names(spec.builtin);
   const std::string name = patch.as_string();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
@@ -101,7 +106,7 @@ void read_keyframes(const ConfigNode& job, TilingJob& parsed) {
   for (const ConfigNode& k : keys->elements()) {
     KeyframeSpec key;
     key.patch = k.at("patch").as_string();
-    check_patch_name(k.at("patch"), parsed.library);
+    check_patch_name(k.at("patch"), parsed.library, parsed.library_file);
     const std::vector<double> p = k.at("position").as_doubles({2});
     key.transform.translation = {p[0], p[1]};
     if (const auto a = k.find("angle")) key.transform.angle = a->as_double() * deg;
@@ -168,10 +173,33 @@ void describe(OptionBinder& b, TilingJob& job) {
   });
 }
 
+// density.zones: [{min: [x, y], max: [x, y], per_m2: d}], parts of the region with their own density.
+void read_density_zones(const ConfigNode& job, TilingJob& parsed) {
+  const auto density = job.find("density");
+  if (!density) return;
+  const auto zones = density->find("zones");
+  if (!zones) return;
+  for (const ConfigNode& z : zones->elements()) {
+    DensityZone zone;
+    const std::vector<double> lo = z.at("min").as_doubles({2}), hi = z.at("max").as_doubles({2});
+    zone.min = {lo[0], lo[1]};
+    zone.max = {hi[0], hi[1]};
+    if (!(hi[0] > lo[0] && hi[1] > lo[1])) z.at("max").fail("expected max > min on both axes");
+    const Region& r = *parsed.environment.scene.region;
+    if (!(lo[0] < r.max.x() && hi[0] > r.min.x() && lo[1] < r.max.y() && hi[1] > r.min.y())) {
+      z.at("min").fail("the zone lies outside the region: it holds no character ever");
+    }
+    zone.per_m2 = z.at("per_m2").as_double();
+    if (!(zone.per_m2 > 0)) z.at("per_m2").fail("expected characters per m² > 0");
+    parsed.options.density.zones.push_back(zone);
+  }
+}
+
 void read_job(const ConfigNode& job, TilingJob& parsed) {
   read_options(job, static_cast<void (*)(OptionBinder&, TilingJob&)>(describe), parsed);
   parsed.environment.scene = read_scene(job);
   if (!parsed.environment.scene.region) job.fail("a tiling job needs `region: {min, max, time, periodic}`: the box to fill");
+  read_density_zones(job, parsed);
   parsed.environment.sources = read_zones(job, "sources");
   parsed.environment.sinks = read_zones(job, "sinks");
   read_library(job, parsed);
@@ -205,6 +233,7 @@ YAML::Node effective_job(const TilingJob& job) {
     lib["builtin"] = names;
   }
   if (spec.real) lib["real"]["dataset"] = job.real_dataset;
+  if (!job.library_file.empty()) lib["file"] = job.library_file;
   if (!spec.preferences.empty()) {
     YAML::Node p;
     for (const auto& [name, w] : spec.preferences) p[name] = yaml_number(w);
@@ -240,6 +269,17 @@ YAML::Node effective_job(const TilingJob& job) {
       keys.push_back(n);
     }
     out["keyframes"] = keys;
+  }
+  if (!job.options.density.zones.empty()) {
+    YAML::Node zones(YAML::NodeType::Sequence);
+    for (const DensityZone& z : job.options.density.zones) {
+      YAML::Node n;
+      n["min"] = flow({z.min.x(), z.min.y()});
+      n["max"] = flow({z.max.x(), z.max.y()});
+      n["per_m2"] = yaml_number(z.per_m2);
+      zones.push_back(n);
+    }
+    out["density"]["zones"] = zones;
   }
   if (!job.environment.sources.empty()) out["sources"] = zones_yaml(job.environment.sources);
   if (!job.environment.sinks.empty()) out["sinks"] = zones_yaml(job.environment.sinks);

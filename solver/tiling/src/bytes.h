@@ -1,92 +1,32 @@
-// Raw bytes of the tiler's values, for the best chain sent between MPI ranks (serialize.h) and the resumable
-// state of a windowed run (windowed.h): trivially copyable values in host byte order (same-architecture only),
-// vectors as a 64-bit count then their elements. Reading past the end, or a count larger than the bytes left,
-// throws InputError: the bytes of a resumable state come from a file.
+// The tiler's values as raw bytes (throng/core/bytes.h): paths, for the best chain sent between MPI ranks
+// (serialize.h) and the resumable state of a windowed run (windowed.h).
 #pragma once
 
-#include <throng/core/errors.h>
+#include <throng/core/bytes.h>
 #include <throng/tiling/tiling.h>
-
-#include <cstddef>
-#include <cstdint>
-#include <cstring>
-#include <string>
-#include <type_traits>
-#include <vector>
 
 namespace throng::tiling {
 
-class ByteWriter {
- public:
-  explicit ByteWriter(std::vector<std::byte>& out) : out_(out) {}
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const auto* p = reinterpret_cast<const std::byte*>(&v);
-    out_.insert(out_.end(), p, p + sizeof(T));
+inline void put_path(ByteWriter& w, const Path& p) {
+  w.put<std::uint64_t>(p.positions.size());
+  for (const Eigen::Vector2d& q : p.positions) {
+    w.put(q.x());
+    w.put(q.y());
   }
-  template <class T>
-  void put_vector(const std::vector<T>& v) {
-    put<std::uint64_t>(v.size());
-    for (const T& x : v) put(x);
-  }
-  void put_path(const Path& p) {
-    put<std::uint64_t>(p.positions.size());
-    for (const Eigen::Vector2d& q : p.positions) {
-      put(q.x());
-      put(q.y());
-    }
-    put_vector(p.headings);
-    put_vector(p.times);
-  }
+  w.put_vector(p.headings);
+  w.put_vector(p.times);
+}
 
- private:
-  std::vector<std::byte>& out_;
-};
-
-class ByteReader {
- public:
-  /// Reads `bytes` from `at` on; `what` names them in messages.
-  ByteReader(const std::vector<std::byte>& bytes, std::size_t& at, std::string what)
-      : bytes_(bytes), at_(at), what_(std::move(what)) {}
-  template <class T>
-  T get() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    if (at_ + sizeof(T) > bytes_.size()) fail();
-    T v;
-    std::memcpy(static_cast<void*>(&v), bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
+inline Path get_path(ByteReader& r) {
+  Path p;
+  p.positions.resize(r.count(2 * sizeof(double)));
+  for (Eigen::Vector2d& q : p.positions) {
+    q.x() = r.get<double>();
+    q.y() = r.get<double>();
   }
-  /// A count of elements of `element_bytes` each, checked against the bytes left.
-  std::size_t count(std::size_t element_bytes) {
-    const auto n = get<std::uint64_t>();
-    if (element_bytes > 0 && n > (bytes_.size() - at_) / element_bytes) fail();
-    return static_cast<std::size_t>(n);
-  }
-  template <class T>
-  std::vector<T> get_vector() {
-    std::vector<T> v(count(sizeof(T)));
-    for (T& x : v) x = get<T>();
-    return v;
-  }
-  Path get_path() {
-    Path p;
-    p.positions.resize(count(2 * sizeof(double)));
-    for (Eigen::Vector2d& q : p.positions) {
-      q.x() = get<double>();
-      q.y() = get<double>();
-    }
-    p.headings = get_vector<double>();
-    p.times = get_vector<double>();
-    return p;
-  }
-  [[noreturn]] void fail() const { throw InputError(what_ + ": truncated or malformed (at byte " + std::to_string(at_) + ")"); }
-
- private:
-  const std::vector<std::byte>& bytes_;
-  std::size_t& at_;
-  std::string what_;
-};
+  p.headings = r.get_vector<double>();
+  p.times = r.get_vector<double>();
+  return p;
+}
 
 }  // namespace throng::tiling

@@ -224,7 +224,7 @@ void FrameStream::save(std::vector<std::byte>& out) const {
     w.put(inst.transform.time_shift);
     w.put<std::uint8_t>(inst.keyframed ? 1 : 0);
     w.put<std::uint64_t>(inst.paths.size());
-    for (const Path& p : inst.paths) w.put_path(p);
+    for (const Path& p : inst.paths) put_path(w, p);
   }
   w.put<std::uint64_t>(next_.size());
   for (const auto& [from, to] : next_) {
@@ -273,7 +273,7 @@ void FrameStream::load(const std::vector<std::byte>& in, std::size_t& at) {
     inst.transform.time_shift = r.get<double>();
     inst.keyframed = r.get<std::uint8_t>() != 0;
     inst.paths.resize(r.count(1));
-    for (Path& p : inst.paths) p = r.get_path();
+    for (Path& p : inst.paths) p = get_path(r);
     if (inst.type >= library_.types.size() || inst.paths.size() != library_.types[inst.type].fragments.size()) r.fail();
     for (std::size_t f = 0; f < inst.paths.size(); ++f) {
       const Path& p = inst.paths[f];

@@ -31,7 +31,9 @@ void check_resources(const Job& job, const Prepared& p) {
       << big.sample_count() << " samples), more than the " << max_deformation_bytes / 1e9 << " GB allowed; lower the sample rate";
     throw ConfigError(m.str());
   }
-  const Region& r = *job.environment.scene.region;
+  // A windowed run indexes one window and its look-ahead (at most another window) at a time, not the horizon.
+  Region r = *job.environment.scene.region;
+  if (job.window_s > 0) r.t1 = std::min(r.t1, r.t0 + 2 * job.window_s);
   const double cells = index_cells(p.library, r, job.options);
   if (cells > max_index_cells) {
     std::ostringstream m;
@@ -47,6 +49,9 @@ void check_resources(const Job& job, const Prepared& p) {
 void describe(OptionBinder& b, Job& job) {
   describe(b, job.options);
   b.section("output", [&](OptionBinder& o) { describe(o, job.layout); });
+  b.field({.key = "window", .unit = "s", .range = Range::non_negative(),
+           .help = "tile the horizon window by window and stream it to the output (throng tile; 0: all at once)"},
+          job.window_s);
   b.section("library", [&](OptionBinder& l) {  // each block only with its kind of patches
     if (l.present({.key = "builtin_options"}, !job.library.builtin.empty())) {
       l.section("builtin_options", [&](OptionBinder& o) { describe(o, job.library.builtin_options); });
@@ -76,11 +81,18 @@ std::vector<std::string> builtin_names(const std::vector<std::string>& names_or_
 
 Prepared prepare(const Job& job, const CrowdMotion* recorded) {
   Prepared p;
+  if (job.library.saved) p.library = *job.library.saved;
   if (!job.library.builtin.empty()) {
+    PatchLibrary builtin;
     try {
-      p.library = builtin_library(builtin_names(job.library.builtin), job.library.builtin_options);
+      builtin = builtin_library(builtin_names(job.library.builtin), job.library.builtin_options);
     } catch (const ConfigError& e) {
       throw ConfigError(std::string("library.builtin_options: ") + e.what());
+    }
+    try {
+      merge_into(p.library, builtin);
+    } catch (const ConfigError& e) {
+      throw ConfigError(std::string("library.builtin: ") + e.what() + " (library.file holds it already: leave it out of builtin)");
     }
   }
   if (job.library.real) {
@@ -98,7 +110,7 @@ Prepared prepare(const Job& job, const CrowdMotion* recorded) {
       throw ConfigError(std::string("library.real.prefix: ") + e.what());
     }
   }
-  if (p.library.types.empty()) throw ConfigError("library: give `builtin` patches, `real` patches, or both");
+  if (p.library.types.empty()) throw ConfigError("library: give `builtin` patches, `real` patches, a saved library `file`, or several");
   for (const auto& [name, weight] : job.library.preferences) {
     try {
       p.library.types[p.library.find(name)].preference = weight;
@@ -150,7 +162,19 @@ Scene laid_scene(const Environment& environment, const LayoutOptions& layout) {
   return out;
 }
 
+WindowOptions window_options(const Job& job) {
+  WindowOptions w;
+  w.window_s = job.window_s;
+  w.frame_rate_hz = job.layout.frame_rate_hz;
+  w.max_facing_rate_rad_s = job.layout.max_facing_rate_rad_s;
+  return w;
+}
+
 Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communicator& communicator) {
+  if (job.window_s > 0) {
+    throw ConfigError("window: a windowed tiling streams its crowd to a file as it goes; run it with `throng tile` "
+                      "(a step of `throng run` holds its whole crowd in memory): remove `window` here");
+  }
   const CrowdMotion* recorded = inputs.empty() ? nullptr : &inputs.front()->motion;
   Run out;
   const Region& region = *job.environment.scene.region;
@@ -172,6 +196,13 @@ Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communic
   out.layout = job.layout;
   out.max_steps = job.options.search.max_steps;
   out.ranks = communicator.size();
+  out.density = measure_density(out.library, out.result.tiling, job.environment, job.options.density, region.t0, region.t1);
+  if (!out.density.windows.empty() && !out.density.met()) {
+    std::ostringstream m;
+    m << "the density per area is off its target by up to " << 100 * out.density.worst_error() << " % in a report window (tolerance "
+      << 100 * out.density.tolerance << " %): raise density.rounds or chains, or lower density.per_m2";
+    out.warnings.push_back(m.str());
+  }
   const TilingReport& r = out.result.report;
   if (r.dangling > 0) {
     const ChainReport& best = r.chains[r.best_chain];
@@ -210,6 +241,15 @@ void describe(ReportWriter& w, const Run& run) {
   w.count("removals", best.removals);
   w.count("search_steps", best.search_steps);
   w.flag("search_capped", best.search_capped);
+  if (!run.density.windows.empty()) {  // a density per area was asked for: each report window's mean per area
+    w.number("density_worst", run.density.worst_error());
+    w.flag("density_met", run.density.met());
+    std::vector<double> means;
+    for (const DensityWindow& d : run.density.windows) {
+      for (const AreaDensity& a : d.areas) means.push_back(a.mean);
+    }
+    w.numbers("density_window_means", means);
+  }
   w.seconds("seconds", r.seconds);
   w.ranks("ranks", run.ranks);
 }

@@ -66,6 +66,23 @@ void describe(OptionBinder& b, Options& o) {
     s.field({.key = "max_steps", .range = Range::closed(0, 1e12), .help = "placements of the deterministic search at most"},
             o.search.max_steps);
   });
+  b.section("density", [&](OptionBinder& d) {  // the zones, a list, are read beside the schema (io/tiling_job.h)
+    DensityOptions& o2 = o.density;
+    d.field({.key = "per_m2", .unit = "1/m²", .range = Range::non_negative(),
+             .help = "characters per m² over the region at every time (0: none; `characters` caps the total)"},
+            o2.per_m2);
+    d.field({.key = "free_area", .help = "areas are what obstacles leave free (else their boxes)"}, o2.free_area);
+    d.field({.key = "area_cell", .unit = "m", .range = Range::positive(), .help = "raster of the free area"}, o2.area_cell_m);
+    d.field({.key = "tolerance", .range = Range{0, 1, true, true}, .help = "a reported window's mean within this relative error"},
+            o2.tolerance);
+    d.field({.key = "bin", .unit = "s", .range = Range::positive(), .help = "control and measurement bins"}, o2.bin_s);
+    d.field({.key = "report_window", .unit = "s", .range = Range::positive(), .help = "reported windows (a windowed run's own)"},
+            o2.report_window_s);
+    d.field({.key = "rounds", .range = Range::closed(0, 1000), .help = "correction rounds after phase 2"}, o2.rounds);
+    d.field({.key = "projection_speed", .unit = "m/s", .range = Range::positive(),
+             .help = "walking speed at which a dangling end is projected to the region's side"},
+            o2.projection_speed_mps);
+  });
   b.section("index", [&](OptionBinder& i) {
     i.field({.key = "cell", .unit = "m", .range = Range::positive(), .help = "space cell of the validity tests' grid"}, o.index.cell_m);
     i.field({.key = "cell_time", .unit = "s", .range = Range::positive(), .help = "time cell of that grid"}, o.index.cell_s);
@@ -101,14 +118,46 @@ void describe(OptionBinder& b, RealPatchOptions& o) {
   b.field({.key = "max_gap", .unit = "s", .range = Range::positive()}, o.max_gap_s);
   b.field({.key = "radius", .unit = "m", .range = Range::positive()}, o.radius_m);
   b.field({.key = "standing_speed", .unit = "m/s", .range = Range::positive()}, o.standing_speed_mps);
-  b.field({.key = "clean_acceleration", .unit = "m/s²", .range = Range::positive()}, o.clean_acceleration_mps2);
-  b.field({.key = "near", .unit = "m", .range = Range::positive(), .help = "two people this close form an episode"}, o.near_m);
-  b.field({.key = "min_contact", .unit = "s", .range = Range::non_negative()}, o.min_contact_s);
-  b.field({.key = "margin", .unit = "s", .range = Range::non_negative()}, o.margin_s);
-  b.field({.key = "reaction_min", .unit = "m/s²", .range = Range::non_negative()}, o.reaction_min_mps2);
-  b.field({.key = "synchronicity_min", .range = Range::closed(-1, 1)}, o.synchronicity_min);
+  b.field({.key = "clean_acceleration", .unit = "m/s²", .range = Range::positive(), .help = "boundaries only where the velocity changes less"},
+          o.clean_acceleration_mps2);
+  b.field({.key = "reaction_window", .unit = "s", .range = Range::non_negative(), .help = "half window of the motion variation (Eq. 4)"},
+          o.reaction_window_s);
+  b.field({.key = "contact", .unit = "m", .range = Range::non_negative(), .help = "two people this close have a contact event"}, o.contact_m);
+  b.field({.key = "near", .unit = "m", .range = Range::positive(), .help = "two people this close have a proximity event when one reacts"},
+          o.near_m);
+  b.field({.key = "reaction_min", .unit = "m²/s²", .range = Range::non_negative(), .help = "motion variation (Eq. 4) of a reaction"},
+          o.reaction_min_m2ps2);
+  b.field({.key = "sync_range", .unit = "m", .range = Range::non_negative(), .help = "synchronicity events only between people this close"},
+          o.sync_range_m);
+  b.field({.key = "synchronicity_min", .unit = "m⁴/s⁴", .range = Range::non_negative(), .help = "synchronicity (Eq. 5) of an event"},
+          o.synchronicity_min);
+  b.field({.key = "min_contact", .unit = "s", .range = Range::non_negative(), .help = "shorter events are ignored"}, o.min_contact_s);
+  b.field({.key = "merge_gap", .unit = "s", .range = Range::non_negative(), .help = "events this close in time may merge into one episode"},
+          o.merge_gap_s);
+  b.field({.key = "merge_distance", .unit = "m", .range = Range::non_negative(),
+           .help = "events of different people merge when two of them come this close"},
+          o.merge_distance_m);
+  b.field({.key = "max_episode_characters", .range = Range::closed(2, 1e6), .help = "larger merged episodes are dropped"},
+          o.max_episode_characters);
+  b.field({.key = "margin", .unit = "s", .range = Range::non_negative(), .help = "boundaries are searched this far beyond an episode"},
+          o.margin_s);
+  b.field({.key = "boundary_lead", .unit = "s", .range = Range::non_negative(),
+           .help = "boundaries at least this far before and after an episode (0: tight, as the paper)"},
+          o.boundary_lead_s);
+  b.field({.key = "pose_speed_scale", .unit = "m/s", .range = Range::positive(), .help = "speed unit of the boundary pose distance"},
+          o.pose_speed_scale_mps);
+  b.field({.key = "pose_turn_scale", .unit = "rad/s", .range = Range::positive(), .help = "turn-rate unit of the boundary pose distance"},
+          o.pose_turn_scale_radps);
+  b.field({.key = "pose_threshold", .range = Range::closed(0.05, 1e6), .help = "diameter below which boundary poses form one group (≥ 0.05: its clustering grid grows as its inverse square)"},
+          o.pose_threshold);
+  b.field({.key = "pose_groups", .range = Range::closed(1, 16), .help = "the largest pose groups the boundaries are chosen from"},
+          o.pose_groups);
+  b.field({.key = "diversity_weight", .range = Range::non_negative(),
+           .help = "cost of one more pose group against the patches' share of the recorded frames"},
+          o.diversity_weight);
+  b.field({.key = "builtin_classes", .help = "name the pose groups standing and walking like the built-in patches"}, o.builtin_classes);
   b.field({.key = "single_duration", .unit = "s", .range = Range::positive()}, o.single_duration_s);
-  b.field({.key = "max_pair_patches", .range = Range::closed(0, 1e6)}, o.max_pair_patches);
+  b.field({.key = "max_episode_patches", .range = Range::closed(0, 1e6), .help = "pair and group patches at most"}, o.max_episode_patches);
   b.field({.key = "max_single_patches", .range = Range::closed(0, 1e6)}, o.max_single_patches);
   b.field({.key = "preference_per_character", .range = Range::positive()}, o.preference_per_character);
   b.field({.key = "prefix", .help = "the patch names' prefix"}, o.prefix);

@@ -18,7 +18,7 @@ std::vector<std::byte> to_bytes(const ChainResult& result) {
     w.put(inst.transform.time_shift);
     w.put<std::uint8_t>(inst.keyframed ? 1 : 0);
     w.put<std::uint64_t>(inst.paths.size());
-    for (const Path& p : inst.paths) w.put_path(p);
+    for (const Path& p : inst.paths) put_path(w, p);
   }
   w.put_vector(t.connections);
   return bytes;
@@ -39,7 +39,7 @@ ChainResult from_bytes(const std::vector<std::byte>& bytes) {
     inst.transform.time_shift = r.get<double>();
     inst.keyframed = r.get<std::uint8_t>() != 0;
     inst.paths.resize(r.count(1));
-    for (Path& p : inst.paths) p = r.get_path();
+    for (Path& p : inst.paths) p = get_path(r);
   }
   t.connections = r.get_vector<Connection>();
   return out;

@@ -411,7 +411,7 @@ void WindowedTiler::Impl::save(std::vector<std::byte>& out) const {
     w.put<std::uint8_t>(l.keyframed ? 1 : 0);
     w.put<std::uint8_t>(l.fixed ? 1 : 0);
     w.put<std::uint64_t>(l.paths.size());
-    for (const Path& p : l.paths) w.put_path(p);
+    for (const Path& p : l.paths) put_path(w, p);
     w.put_vector(l.ends);
   }
   stream.save(out);
@@ -450,7 +450,7 @@ void WindowedTiler::Impl::load(const std::vector<std::byte>& in) {
     l.paths.resize(r.count(1));
     if (l.paths.size() != type.fragments.size()) r.fail();
     for (std::size_t f = 0; f < l.paths.size(); ++f) {
-      l.paths[f] = r.get_path();
+      l.paths[f] = get_path(r);
       const Path& p = l.paths[f];
       if (p.times.size() != type.fragments[f].sample_count() || p.positions.size() != p.times.size() ||
           p.headings.size() != p.times.size()) {

@@ -59,12 +59,33 @@ class AtomicOutput {
   bool committed_ = false;
 };
 
+/// Flushes the regular file `path` to disk (fsync): what a resume record names is on disk before the record.
+/// IoError naming the file on failure.
+void sync_file(const std::filesystem::path& path);
+
+/// Makes the finished file `from` (written in the target's folder, by a writer that keeps it across runs: a
+/// resumable stream's partial file) the file `target`: flushes it to disk, renames it onto the target (which must be
+/// a regular file or nothing: check_output_target) and flushes the folder. IoError naming the target on failure.
+void move_into_place(const std::filesystem::path& from, const std::filesystem::path& target);
+
 /// Installs handlers for every catchable signal whose default is to end the process (SIGHUP, SIGINT, SIGQUIT,
 /// SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF, SIGABRT) that remove every
 /// pending temporary output and exit with 128 + signal (130 for Ctrl-C). A signal ignored when the program
 /// started (`nohup` ignores SIGHUP) stays ignored. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL) are left to the
 /// sanitizers and the system. Safe to call more than once.
 void install_interrupt_cleanup();
+
+/// While one lives, the handlers of install_interrupt_cleanup() only note a terminating signal; when the last one
+/// ends, a noted signal is acted on as it would have been (pending temporaries removed, the note written, exit
+/// 128 + signal). For a record that must reach the disk whole or not at all: a resumable stream's window (data,
+/// flush, state), so that Ctrl-C or SIGTERM never stops it half-way. Nests; not for long work.
+class DeferredInterrupts {
+ public:
+  DeferredInterrupts() noexcept;
+  ~DeferredInterrupts();
+  DeferredInterrupts(const DeferredInterrupts&) = delete;
+  DeferredInterrupts& operator=(const DeferredInterrupts&) = delete;
+};
 
 /// What the handlers of install_interrupt_cleanup() write to descriptor `fd` after removing the pending outputs and
 /// before exiting (a batch's summary so far); an empty text writes nothing. Replaces the previous note. The text

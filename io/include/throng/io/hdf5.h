@@ -157,8 +157,13 @@ class File {
   /// Opens an existing file read-only. Throws IoError (missing, a folder, not a regular file, unreadable) or
   /// InputError (not HDF5, truncated). Every read through it is bounded by `limits` (one budget for the file).
   static File open(const std::filesystem::path& path, const ReadLimits& limits = {});
+  /// Opens an existing file that this program wrote for reading and writing (a resumed stream: growing.h);
+  /// messages call it `display_name`. IoError (missing, unreadable) or InputError (not HDF5, damaged).
+  static File open_for_update(const std::filesystem::path& path, const std::string& display_name = {});
 
   [[nodiscard]] Group root() const;
+  /// Writes everything libhdf5 holds for the file to it (a record a later run resumes from); IoError on failure.
+  void flush() const;
   /// Flushes and closes; throws IoError if HDF5 reports a failure (a full disk shows here).
   void close();
 

@@ -35,6 +35,22 @@ namespace throng::tiling {
 
 void write_data(const h5::Group& record, const Run& run);
 
+/// Instances and connections as the rows of instances/type, transform, keyframed, paths and connections.
+struct TilingRows {
+  std::vector<std::int64_t> types;
+  std::vector<double> transforms;   ///< 4 per instance
+  std::vector<std::int32_t> keyframed;
+  std::vector<double> paths;        ///< 4 per sample
+  std::vector<std::int64_t> connections;  ///< 7 per connection
+};
+[[nodiscard]] TilingRows tiling_rows(const std::vector<Instance>& instances, const std::vector<Connection>& connections);
+
+/// The parts of write_data that a streamed tiling (tiling_stream.h) writes once, up front: the library group, and
+/// the tile (region, region_periodic, repeat, sources, sinks, tile_obstacles) with the check options' attributes.
+void write_library(const h5::Group& record, const PatchLibrary& library);
+void write_tile_settings(const h5::Group& record, const Environment& environment, const LayoutOptions& layout,
+                         const CheckOptions& check);
+
 }  // namespace throng::tiling
 
 namespace throng {
@@ -49,8 +65,9 @@ struct TilingData {
   std::vector<std::vector<tiling::AgentPiece>> pieces;  ///< per output agent, the fragment copies it walks
 };
 
-/// Reads a crowd file written by `throng tile`. IoError (missing or unreadable), InputError (no tiling data,
-/// bad shapes).
+/// Reads a crowd file written by `throng tile`: its scene, its agent count and its tiling data, not its frames
+/// (an hour's streamed crowd is checked without holding it). IoError (missing or unreadable), InputError (no
+/// tiling data, bad shapes).
 /// Bounded by `limits` as read_crowd_file is; indices and stored check options are range-checked (InputError).
 [[nodiscard]] TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits& limits = {});
 

@@ -20,9 +20,18 @@
 //       columns: "frame=f,id=p,x=X,y=Y"  # fps where the data states no rate, a CSV's column map, the positions'
 //       units: cm                    # unit, a credit added to the data's own (absent: the format's own)
 //       credit: "..."
-//       sample_rate: 10              # and every RealPatchOptions field: max_gap, radius, standing_speed,
-//       near: 1.5                    # clean_acceleration, min_contact, margin, reaction_min, synchronicity_min,
-//       max_pair_patches: 20         # single_duration, max_single_patches, preference_per_character
+//       sample_rate: 10              # and every RealPatchOptions field (construct.h: episode detection by
+//       near: 1.5                    # contact, proximity with reaction (Eq. 4) and synchronicity (Eq. 5), merged
+//       max_episode_patches: 20      # into groups, boundaries from clustered poses): max_gap, radius,
+//                                    # standing_speed, clean_acceleration, reaction_window, contact, reaction_min,
+//                                    # sync_range, synchronicity_min, min_contact, merge_gap, merge_distance,
+//                                    # max_episode_characters, margin, boundary_lead, pose_speed_scale,
+//                                    # pose_turn_scale, pose_threshold, pose_groups, diversity_weight,
+//                                    # builtin_classes, single_duration, max_single_patches,
+//                                    # preference_per_character, prefix
+//     file: ../shots/library.h5      # optional: the library of a file written by `throng tile` (built once, with
+//                                    # its recorded patches, and reused by later jobs: every shot of a batch), relative
+//                                    # to the job file's folder; its types come first, builtin and real add to them
 //     preferences: {meet: 3}         # per type name: the phase-1 sampling weight (> 0), replaces the default
 //   keyframes:                       # user-placed instances (§6 Keyframing): kept as placed, never removed
 //     - {patch: bow_rows, position: [6, 6], angle: 0, time: 1.5}   # centroid, direction (deg), middle time;
@@ -30,6 +39,20 @@
 //   sources: [{center: [x, y], radius: 1, time: [t0, t1]}]   # entries here need no partner (time optional)
 //   sinks:   [{center: [x, y], radius: 1, time: [t0, t1]}]   # exits here need no partner
 //   characters: 0                    # phase 1 adds no patch beyond this many characters (0: no limit)
+//   density:                         # characters per m² at every time of the horizon (tiling/options.h DensityOptions)
+//     per_m2: 0                      # over the whole region (0: none); met per report window within tolerance
+//     zones: [{min: [x, y], max: [x, y], per_m2: 0.1}]   # parts of the region with their own density
+//     free_area: false               # areas are what obstacles leave free (sampled every area_cell metres)
+//     area_cell: 0.1
+//     tolerance: 0.1                 # relative, on each report window's mean
+//     bin: 2                         # control and measurement bins (s)
+//     report_window: 60              # reported windows (s; a windowed run reports its own windows)
+//     rounds: 4                      # correction rounds after phase 2
+//     projection_speed: 1.3          # m/s at which a dangling end is projected to the region's side
+//   window: 0                        # > 0: tile the horizon window by window of this many seconds and stream the
+//                                    # crowd to the output as it goes (`throng tile` only; --resume continues a
+//                                    # stopped run; io/tiling_stream.h is the file's layout). Not with keyframes,
+//                                    # output.repeat, a region periodic in time, or `characters`
 //   chains: 2                        # multi-start: independent chains, chain c seeded derive_seed(--seed, c)
 //   preference:                      # Eq. 7, F = Π exp(−f_i / σ_i); absent terms are 1
 //     position: {target: [x, y], sigma: 25}     # f1 = |p − target|² (m²), sigma σ1 in m²
@@ -73,6 +96,7 @@ namespace throng {
 /// from --seed) and the recorded crowd its library takes patches from.
 struct TilingJob : tiling::Job {
   std::string real_dataset;  ///< the resolved path of library.real.dataset (a file or a folder); empty: none
+  std::string library_file;  ///< the resolved path of library.file (a file written by `throng tile`); empty: none
   ImportOptions real_import; ///< how import_crowd reads it: library.real's fps, columns, units, credit
 };
 

@@ -10,9 +10,12 @@
 #include <throng/tiling/characters.h>
 #include <throng/tiling/check.h>
 #include <throng/tiling/construct.h>
+#include <throng/tiling/density.h>
 #include <throng/tiling/library.h>
 #include <throng/tiling/tile.h>
+#include <throng/tiling/windowed.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +28,9 @@ struct LibrarySpec {
   BuiltinOptions builtin_options;
   bool real = false;                  ///< patches from a recorded crowd, given to prepare()
   RealPatchOptions real_options;
+  /// A library saved by an earlier run (library.file: the library of a file written by `throng tile`), loaded by
+  /// the caller (reading a job builds and loads nothing); its types come first.
+  std::optional<PatchLibrary> saved;
   std::vector<std::pair<std::string, double>> preferences;  ///< per type name, the phase-1 sampling weight
 };
 
@@ -40,6 +46,9 @@ struct Job {
   std::vector<KeyframeSpec> keyframes;
   Options options;                    ///< its seed: the caller's (--seed for the program)
   LayoutOptions layout;
+  /// > 0: the horizon is tiled window by window of this many seconds and streamed to the output as it goes
+  /// (windowed.h; `throng tile` alone: run() refuses it, a whole crowd in memory is what windows avoid).
+  double window_s = 0;
 };
 
 /// The job's options: Options, `output:` (LayoutOptions), `library.builtin_options`, `library.real`.
@@ -61,6 +70,9 @@ struct Prepared {
 /// naming the keys to change (library.builtin_options.sample_rate, index.cell ...).
 [[nodiscard]] Prepared prepare(const Job& job, const CrowdMotion* recorded);
 
+/// The windowed tiler's options of a job with `window`: its frames as `output:` lays them.
+[[nodiscard]] WindowOptions window_options(const Job& job);
+
 /// The check options that go with a job's tiler options (the same limits and thresholds).
 [[nodiscard]] CheckOptions check_options_for(const Options& options);
 
@@ -80,6 +92,7 @@ struct Run {
   CheckOptions check;
   LayoutOptions layout;
   std::size_t max_steps = 0;
+  DensityReport density;       ///< per report window and area, when the job asks for a density per area
   int ranks = 1;               ///< the ranks the chains were spread over
   std::vector<std::string> warnings;
   std::string shortfall;       ///< dangling ends, and why the search stopped
