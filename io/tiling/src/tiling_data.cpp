@@ -228,9 +228,8 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   TilingData out;
   // One file, one budget. The frames are not read: the tiling alone is checked.
   const h5::File file = h5::File::open(path, limits);
-  CrowdFile crowd;
-  crowd.scene = detail::read_crowd_scene(file);
-  out.environment.scene = crowd.scene;
+  const Scene scene = detail::read_crowd_scene(file);
+  out.environment.scene = scene;
   const h5::Group params = open_throng_parameters(file);
   const std::uint64_t agent_count = detail::crowd_agent_count(file);
   params.budget().charge(checked_product(agent_count, sizeof(std::vector<AgentPiece>)).value_or(UINT64_MAX), params.where("agents"),
@@ -255,9 +254,9 @@ TilingData read_tiling_data(const std::filesystem::path& path, const ReadLimits&
   }
   if (!out.environment.scene.region) throw InputError(path.string() + ": no region in the scene (not written by throng tile?)");
   if (const auto own = g.double_attribute("tile_obstacles")) {
-    if (!(*own >= 0 && *own <= static_cast<double>(crowd.scene.obstacles.size()))) {
+    if (!(*own >= 0 && *own <= static_cast<double>(scene.obstacles.size()))) {
       throw InputError(g.where() + ": tile_obstacles = " + std::to_string(*own) + " of " +
-                       std::to_string(crowd.scene.obstacles.size()) + " obstacles in the scene");
+                       std::to_string(scene.obstacles.size()) + " obstacles in the scene");
     }
     out.environment.scene.obstacles.resize(static_cast<std::size_t>(*own));
   }

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <optional>
 #include <set>
 
@@ -24,7 +23,6 @@ using h5::Number;
 
 namespace {
 
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr std::uint64_t slot_chunk = 32;   // slots per chunk of the per-frame datasets
 constexpr std::uint64_t row_chunk = 1024;  // rows per chunk of the tiling's tables
 
@@ -121,9 +119,9 @@ struct TilingStreamWriter::Impl {
     f(time, "particles/trajectory/position/time", Number::float64, std::vector<std::uint64_t>{0}, std::vector<std::uint64_t>{row_chunk}, 0.0);
     const std::uint64_t fc = std::max<std::uint64_t>(1, setup.frames_per_window);
     f(position, "particles/trajectory/position/value", Number::float64, std::vector<std::uint64_t>{0, 0, 3},
-      std::vector<std::uint64_t>{fc, slot_chunk, 3}, nan);
+      std::vector<std::uint64_t>{fc, slot_chunk, 3}, absent);
     f(orientation, "particles/trajectory/orientation/value", Number::float64, std::vector<std::uint64_t>{0, 0, 4},
-      std::vector<std::uint64_t>{fc, slot_chunk, 4}, nan);
+      std::vector<std::uint64_t>{fc, slot_chunk, 4}, absent);
     f(action, "particles/trajectory/action/value", Number::int32, std::vector<std::uint64_t>{0, 0},
       std::vector<std::uint64_t>{fc, slot_chunk}, -1.0);
     f(species, "particles/trajectory/species", Number::int32, std::vector<std::uint64_t>{0}, std::vector<std::uint64_t>{slot_chunk}, 0.0);
@@ -298,7 +296,7 @@ struct TilingStreamWriter::Impl {
       if (const auto it = record.active.find(m.ids[a]); it != record.active.end()) it->second.last_pieces = std::move(listed[a]);
     }
     const std::uint64_t S = record.slots, T = record.frames + F;
-    std::vector<double> pos(F * S * 3, nan), ori(F * S * 4, nan);
+    std::vector<double> pos(F * S * 3, absent), ori(F * S * 4, absent);
     std::vector<std::int32_t> act(F * S, -1);
     std::vector<std::int64_t> ids(F * S, -1), steps(F);
     for (std::size_t f = 0; f < F; ++f) {
