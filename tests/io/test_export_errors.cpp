@@ -8,7 +8,10 @@
 #include <catch2/catch.hpp>
 #include "check_throws.h"
 
+#include <csignal>
 #include <fstream>
+
+#include <sys/resource.h>
 
 using namespace throng;
 
@@ -56,4 +59,39 @@ TEST_CASE("pedpy: a walkable area asked of a crowd without obstacles is a usage 
   CHECK_THROWS_AS_WITH(export_crowd(ExportFormat::pedpy, dir / "crowd.h5", dir / "out.h5", {}, required), ConfigError,
                        Catch::Contains("a walkable area was asked for, but the crowd has no obstacles"));
   CHECK(test::files_in(dir) == std::vector<std::string>{"crowd.h5"});
+}
+
+TEST_CASE("an export whose writes fail midway (a full disk) stops with IoError and leaves nothing") {
+  const auto dir = test::scratch_dir("export_errors_write");
+  // 3,000 agents × 25 frames: every format's output is several MB, streamed in blocks by a writer thread; a file
+  // size limit of 256 kB makes a write fail midway (EFBIG, as ENOSPC would), on that thread.
+  CrowdFile crowd = test::export_crowd();
+  CrowdMotion big = CrowdMotion::with_shape(crowd.motion.frame_count(), 3000);
+  big.times = crowd.motion.times;
+  for (std::size_t t = 0; t < big.frame_count(); ++t) {
+    for (std::size_t n = 0; n < big.agent_count(); ++n) {
+      if (crowd.motion.present(t, n % 6)) big.position(t, n) = crowd.motion.position(t, n % 6) + Eigen::Vector3d(0.0, 3.0 * static_cast<double>(n / 6), 0.0);
+    }
+  }
+  crowd.motion = big;
+  struct FileSizeLimit {
+    rlimit saved{};
+    void (*handler)(int) = nullptr;
+    explicit FileSizeLimit(rlim_t bytes) {
+      getrlimit(RLIMIT_FSIZE, &saved);
+      handler = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of the signal ending the test
+      const rlimit limit{bytes, saved.rlim_max};
+      setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    ~FileSizeLimit() {
+      setrlimit(RLIMIT_FSIZE, &saved);
+      std::signal(SIGXFSZ, handler);
+    }
+  };
+  for (const ExportFormat format : {ExportFormat::gltf, ExportFormat::usd, ExportFormat::csv, ExportFormat::pedpy}) {
+    INFO(export_format_names()[static_cast<std::size_t>(format)]);
+    const FileSizeLimit limit(256 << 10);
+    CHECK_THROWS_AS(export_crowd(format, crowd, dir / ("out" + export_extension(format))), IoError);
+  }
+  CHECK(test::files_in(dir).empty());
 }

@@ -6,23 +6,36 @@ namespace throng::detail {
 
 AgentPoses::AgentPoses(const CrowdMotion& motion, const PathPoseRule& rule)
     : motion_(motion), rule_(rule), derived_(motion, rule), held_position_(motion.agent_count(), Eigen::Vector3d::Zero()),
-      held_facing_(motion.agent_count(), Eigen::Quaterniond::Identity()) {
-  for (std::size_t n = 0; n < motion.agent_count(); ++n) {
-    const auto [first, last] = motion.presence_span(n);
-    if (last <= first) continue;
-    held_position_[n] = motion.position(first, n);
-    if (facing_given()) held_facing_[n] = motion.orientation(first, n);
+      held_facing_(motion.agent_count(), Eigen::Quaterniond::Identity()), position_held_(motion.agent_count(), 0),
+      facing_held_(motion.agent_count(), 0) {}
+
+std::size_t AgentPoses::first_present(std::size_t n) const {
+  for (std::size_t t = 0; t < motion_.frame_count(); ++t) {
+    if (motion_.present(t, n)) return t;
   }
+  return motion_.frame_count();
 }
 
 Eigen::Vector3d AgentPoses::position(std::size_t t, std::size_t n) {
-  if (motion_.present(t, n)) held_position_[n] = motion_.position(t, n);
+  if (motion_.present(t, n)) {
+    position_held_[n] = 1;
+    held_position_[n] = motion_.position(t, n);
+  } else if (!position_held_[n]) {
+    position_held_[n] = 1;
+    if (const std::size_t first = first_present(n); first < motion_.frame_count()) held_position_[n] = motion_.position(first, n);
+  }
   return held_position_[n];
 }
 
 Eigen::Quaterniond AgentPoses::facing(std::size_t t, std::size_t n) {
   if (!facing_given()) return derived_.at(t, n);
-  if (motion_.present(t, n)) held_facing_[n] = motion_.orientation(t, n);
+  if (motion_.present(t, n)) {
+    facing_held_[n] = 1;
+    held_facing_[n] = motion_.orientation(t, n);
+  } else if (!facing_held_[n]) {
+    facing_held_[n] = 1;
+    if (const std::size_t first = first_present(n); first < motion_.frame_count()) held_facing_[n] = motion_.orientation(first, n);
+  }
   return held_facing_[n];
 }
 

@@ -36,8 +36,14 @@ class AgentPoses {
   const CrowdMotion& motion_;
   PathPoseRule rule_;
   PathFacing derived_;
-  std::vector<Eigen::Vector3d> held_position_;   // per agent: last present position (the first before entering)
+  /// The first frame agent n is present at (frame_count() if never).
+  [[nodiscard]] std::size_t first_present(std::size_t n) const;
+
+  // Per agent, kept by position() and facing() each on its own, set lazily (the first frame asked: a stream that
+  // asks present frames only never scans for the first present one).
+  std::vector<Eigen::Vector3d> held_position_;   // last present position asked (the first one before entering)
   std::vector<Eigen::Quaterniond> held_facing_;  // the same for stored facings
+  std::vector<unsigned char> position_held_, facing_held_;  // 1 once held_position_ / held_facing_ is set
 };
 
 /// The heading (radians, CCW from +x) of an orientation: where its forward axis points on the ground plane.

@@ -1,19 +1,18 @@
 #include "agent_poses.h"
-#include "agent_ranges.h"
+#include "frame_text.h"
 #include "output_file.h"
 #include "text_numbers.h"
 
 #include <throng/core/errors.h>
 #include <throng/io/export/csv_table.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <variant>
 
 namespace throng {
 namespace {
-
-constexpr std::size_t flush_bytes = 1 << 22;  // text per write: large writes, a few MB held at a time
 
 // A text field as RFC 4180 writes it: quoted (quotes doubled) when it holds a comma, a quote or a line break.
 void append_field(std::string& out, const std::string& text) {
@@ -29,49 +28,79 @@ void append_field(std::string& out, const std::string& text) {
   out += '"';
 }
 
+// The parts of a row that do not change from frame to frame or from agent to agent, formatted once: per agent
+// "id," and ",radius,species\n", per action ",name,prop", per frame "frame,time,".
+struct RowConstants {
+  std::vector<std::string> agent_head, agent_tail, action;
+  std::size_t longest = 0;  // the longest agent and action parts together
+
+  RowConstants(const CrowdMotion& m, const std::vector<ActionKind>& table) {
+    const std::size_t N = m.agent_count();
+    agent_head.resize(N);
+    agent_tail.resize(N);
+    std::size_t agent_longest = 0, action_longest = 0;
+    for (std::size_t n = 0; n < N; ++n) {
+      detail::append_number(agent_head[n], m.ids[n]);
+      agent_head[n] += ',';
+      agent_tail[n] += ',';
+      detail::append_number(agent_tail[n], m.radii[n]);
+      agent_tail[n] += ',';
+      detail::append_number(agent_tail[n], m.species[n]);
+      agent_tail[n] += '\n';
+      agent_longest = std::max(agent_longest, agent_head[n].size() + agent_tail[n].size());
+    }
+    for (const ActionKind& a : table) {
+      std::string& text = action.emplace_back(",");
+      append_field(text, a.name);
+      text += ',';
+      append_field(text, a.prop);
+      action_longest = std::max(action_longest, text.size());
+    }
+    longest = agent_longest + action_longest;
+  }
+};
+
 void write_rows(const CrowdFile& crowd, detail::OutputFile& file, const ExportOptions& options) {
   const CrowdMotion& m = crowd.motion;
   detail::AgentPoses poses(m, options.pose);
-  const auto& table = poses.action_table();
-  std::string text = "frame,time,id,x,y,z,qx,qy,qz,qw,heading_deg,action,prop,radius,species\n";
+  const RowConstants constants(m, poses.action_table());
+  file.write("frame,time,id,x,y,z,qx,qy,qz,qw,heading_deg,action,prop,radius,species\n");
   constexpr double degrees = 180.0 / 3.14159265358979323846;
+  std::vector<std::string> frame_head(m.frame_count());
   for (std::size_t t = 0; t < m.frame_count(); ++t) {
-    detail::for_agent_ranges<std::string>(m.agent_count(), [&](std::size_t n, std::string& row) {
-      if (!poses.present(t, n)) return;
-      const Eigen::Vector3d position = poses.position(t, n);
-      const Eigen::Quaterniond facing = poses.facing(t, n);
-      detail::append_number(row, static_cast<std::int64_t>(t));
-      row += ',';
-      detail::append_number(row, m.times[t]);
-      row += ',';
-      detail::append_number(row, m.ids[n]);
-      for (int k = 0; k < 3; ++k) {
-        row += ',';
-        detail::append_number(row, position[k]);
-      }
-      for (int k = 0; k < 4; ++k) {
-        row += ',';
-        detail::append_number(row, facing.coeffs()[k]);
-      }
-      row += ',';
-      detail::append_number(row, detail::heading(facing) * degrees);
-      const ActionKind& action = table[static_cast<std::size_t>(poses.action(t, n))];
-      row += ',';
-      append_field(row, action.name);
-      row += ',';
-      append_field(row, action.prop);
-      row += ',';
-      detail::append_number(row, m.radii[n]);
-      row += ',';
-      detail::append_number(row, m.species[n]);
-      row += '\n';
-    }, [&](const std::string& rows) { text += rows; });
-    if (text.size() > flush_bytes) {
-      file.write(text);
-      text.clear();
-    }
+    detail::append_number(frame_head[t], static_cast<std::int64_t>(t));
+    frame_head[t] += ',';
+    detail::append_number(frame_head[t], m.times[t]);
+    frame_head[t] += ',';
   }
-  file.write(text);
+  // Room for one row: the constant parts, 8 numbers and their commas.
+  const std::size_t row_room = constants.longest + 64 + 8 * (detail::max_number_chars + 1);
+  detail::stream_frame_text(
+      file, m.frame_count(), m.agent_count(), {.bytes_per_agent = 120}, [](std::size_t, detail::TextBuffer&) {},
+      [&](std::size_t t, std::size_t n, detail::TextBuffer& out) {
+        if (!poses.present(t, n)) return;
+        const Eigen::Vector3d position = poses.position(t, n);
+        const Eigen::Quaterniond facing = poses.facing(t, n);
+        const std::string& action = constants.action[static_cast<std::size_t>(poses.action(t, n))];
+        char* p = out.room(row_room + frame_head[t].size());
+        p = detail::put_text(p, frame_head[t]);
+        p = detail::put_text(p, constants.agent_head[n]);
+        p = detail::put_number(p, position.x());
+        *p++ = ',';
+        p = detail::put_number(p, position.y());
+        *p++ = ',';
+        p = detail::put_number(p, position.z());
+        for (int k = 0; k < 4; ++k) {
+          *p++ = ',';
+          p = detail::put_number(p, facing.coeffs()[k]);
+        }
+        *p++ = ',';
+        p = detail::put_number(p, detail::heading(facing) * degrees);
+        p = detail::put_text(p, action);
+        p = detail::put_text(p, constants.agent_tail[n]);
+        out.advance(p);
+      },
+      [](std::size_t, detail::TextBuffer&) {});
 }
 
 void write_obstacles(const CrowdFile& crowd, detail::OutputFile& file) {

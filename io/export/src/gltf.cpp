@@ -4,6 +4,7 @@
 // somewhere (key times, float[K], and scales, float[K][3]). Every size is known before the first byte (the keys
 // come from a pass over presence), so the JSON goes first and the data streams after it, agent group by group.
 #include "agent_poses.h"
+#include "block_stream.h"
 #include "output_file.h"
 #include "proxy_mesh.h"
 
@@ -47,10 +48,12 @@ std::size_t padded(std::size_t bytes) { return (bytes + 3) & ~std::size_t(3); }
 // agent present at every frame (no scale channel).
 std::vector<std::uint32_t> presence_keys(const CrowdMotion& m, std::size_t n) {
   std::vector<std::uint32_t> keys{0};
-  bool always = m.present(0, n);
+  bool always = m.present(0, n), before = always;
   for (std::size_t t = 1; t < m.frame_count(); ++t) {
-    always = always && m.present(t, n);
-    if (m.present(t, n) != m.present(t - 1, n)) keys.push_back(static_cast<std::uint32_t>(t));
+    const bool now = m.present(t, n);
+    always = always && now;
+    if (now != before) keys.push_back(static_cast<std::uint32_t>(t));
+    before = now;
   }
   if (always) keys.clear();
   return keys;
@@ -65,7 +68,10 @@ class GltfWriter {
     const std::size_t T = m_.frame_count(), N = m_.agent_count();
     if (T == 0 || N == 0) throw InputError("glTF export: the crowd has no frames or no agents, nothing to animate");
     keys_.resize(N);
-    for (std::size_t n = 0; n < N; ++n) keys_[n] = presence_keys(m_, n);
+    // Each agent's keys on their own (a strided walk through the frames): in parallel, the same keys either way.
+    parallel_for(N, 64, [&](std::size_t n0, std::size_t n1) {
+      for (std::size_t n = n0; n < n1; ++n) keys_[n] = presence_keys(m_, n);
+    });
     const std::string json_text = document();
     const std::size_t json_size = padded(json_text.size());
     if (12 + 8 + json_size + 8 + bin_size_ > 0xFFFFFFFFu) {
@@ -211,11 +217,13 @@ class GltfWriter {
     detail::AgentPoses poses(m_, options_.pose);
     const std::size_t per_agent = T * 7;
     const std::size_t group = std::max<std::size_t>(1, group_bytes / (per_agent * 4));
-    std::vector<float> buffer;
+    // Groups are filled while the writer thread writes the group before (detail::BlockStream).
+    detail::BlockStream<std::vector<float>> stream([&](std::vector<float>& buffer) { file_.write(buffer.data(), buffer.size() * 4); });
     std::vector<Eigen::Quaterniond> previous;
     for (std::size_t n0 = 0; n0 < N; n0 += group) {
       const std::size_t G = std::min(group, N - n0);
-      buffer.assign(G * per_agent, 0.0f);
+      std::vector<float>& buffer = stream.next();
+      buffer.resize(G * per_agent);
       previous.assign(G, Eigen::Quaterniond::Identity());
       // Agent ranges in parallel, each walking every frame over its own agents (their positions at a frame are
       // contiguous); each agent's values land in its own slots, so the bytes do not depend on the thread count.
@@ -238,8 +246,9 @@ class GltfWriter {
           }
         }
       });
-      file_.write(buffer.data(), buffer.size() * 4);
+      stream.submit();
     }
+    stream.finish();
     // Scale keys: STEP, 0 while absent.
     std::size_t written = 0;
     for (std::size_t n = 0; n < N; ++n) {

@@ -1,9 +1,10 @@
 #include "agent_poses.h"
-#include "agent_ranges.h"
+#include "block_stream.h"
 #include "frame_rate.h"
 #include "walkable_area.h"
 
 #include <throng/core/errors.h>
+#include <throng/core/parallel.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/export/pedpy.h>
 #include <throng/io/hdf5.h>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace throng {
@@ -81,6 +83,78 @@ class RowWriter {
   hsize_t written_ = 0;
 };
 
+// The unit vector on the ground an agent faces: its forward axis projected and normalised ((1, 0) when it faces
+// straight up or down), without trigonometry.
+std::pair<double, double> ground_facing(const Eigen::Quaterniond& q) {
+  const Eigen::Vector3d f = q * Eigen::Vector3d::UnitX();
+  const double length = std::hypot(f.x(), f.y());
+  if (length == 0.0) return {1.0, 0.0};
+  return {f.x() / length, f.y() / length};
+}
+
+// The rows, frame-major: blocks of frames made in parallel over agent ranges (each range's rows of a frame in
+// its own part, joined in range order: the same rows whatever the thread count) while the writer thread appends
+// the block before (HDF5 is called from that thread alone while rows are made). Whole chunks at a time: a
+// partial chunk would be read back and rewritten.
+void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& trajectory) {
+  const std::size_t N = m.agent_count(), T = m.frame_count(), chunk = chunk_rows;
+  constexpr std::size_t ranges = 16;
+  const std::size_t step = (N + ranges - 1) / ranges;
+  const std::size_t per_block = std::clamp<std::size_t>(chunk / std::max<std::size_t>(N, 1), 1, std::max<std::size_t>(T, 1));
+  struct Block {
+    std::vector<std::vector<Row>> parts;  // [frame in block][range]
+    std::size_t frames = 0;
+  };
+  std::vector<Row> carry;  // rows short of a whole chunk, for the next block
+  carry.reserve(chunk);
+  detail::BlockStream<Block> stream([&](Block& block) {
+    for (std::size_t k = 0; k < block.frames * ranges; ++k) {
+      const std::vector<Row>& part = block.parts[k];
+      std::size_t done = 0;
+      while (done < part.size()) {
+        if (carry.empty() && part.size() - done >= chunk) {
+          trajectory.append(part.data() + done, chunk);
+          done += chunk;
+          continue;
+        }
+        const std::size_t take = std::min(chunk - carry.size(), part.size() - done);
+        carry.insert(carry.end(), part.begin() + static_cast<std::ptrdiff_t>(done), part.begin() + static_cast<std::ptrdiff_t>(done + take));
+        done += take;
+        if (carry.size() == chunk) {
+          trajectory.append(carry.data(), chunk);
+          carry.clear();
+        }
+      }
+    }
+  });
+  detail::AgentPoses poses(m, options.pose);
+  for (std::size_t t0 = 0; t0 < T; t0 += per_block) {
+    const std::size_t count = std::min(per_block, T - t0);
+    Block& block = stream.next();
+    block.frames = count;
+    if (block.parts.size() < count * ranges) block.parts.resize(count * ranges);
+    parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
+      for (std::size_t r = r0; r < r1; ++r) {
+        const std::size_t n0 = r * step, n1 = std::min(N, (r + 1) * step);
+        for (std::size_t f = 0; f < count; ++f) {
+          std::vector<Row>& part = block.parts[f * ranges + r];
+          part.clear();
+          const std::size_t t = t0 + f;
+          for (std::size_t n = n0; n < n1; ++n) {
+            if (!m.present(t, n)) continue;
+            const Eigen::Vector3d p = m.position(t, n);
+            const auto [ox, oy] = ground_facing(poses.facing(t, n));
+            part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), ox, oy});
+          }
+        }
+      }
+    });
+    stream.submit();
+  }
+  stream.finish();
+  trajectory.append(carry.data(), carry.size());
+}
+
 void write_pedpy(const CrowdFile& crowd, const std::filesystem::path& output, AtomicOutput& atomic,
                  const PedpyOptions& pedpy, const ExportOptions& options) {
   const CrowdMotion& m = crowd.motion;
@@ -112,22 +186,7 @@ void write_pedpy(const CrowdFile& crowd, const std::filesystem::path& output, At
     if (!wkt.empty()) root.set_attribute("wkt_geometry", wkt);
     root.set_attribute("producer", std::string("throng"));
 
-    detail::AgentPoses poses(m, options.pose);
-    std::vector<Row> rows;
-    rows.reserve(chunk_rows);
-    for (std::size_t t = 0; t < m.frame_count(); ++t) {
-      detail::for_agent_ranges<std::vector<Row>>(m.agent_count(), [&](std::size_t n, std::vector<Row>& part) {
-        if (!m.present(t, n)) return;
-        const Eigen::Vector3d p = m.position(t, n);
-        const double h = detail::heading(poses.facing(t, n));
-        part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), std::cos(h), std::sin(h)});
-      }, [&](const std::vector<Row>& part) { rows.insert(rows.end(), part.begin(), part.end()); });
-      // Whole chunks at a time (a partial chunk would be read back and rewritten).
-      std::size_t done = 0;
-      for (; rows.size() - done >= chunk_rows; done += chunk_rows) trajectory.append(rows.data() + done, chunk_rows);
-      rows.erase(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(done));
-    }
-    trajectory.append(rows.data(), rows.size());
+    stream_rows(m, options, trajectory);
   }
   file.close();
 }

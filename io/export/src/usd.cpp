@@ -1,6 +1,7 @@
 #include "agent_poses.h"
-#include "agent_ranges.h"
 #include "frame_rate.h"
+#include "half_number.h"
+#include "frame_text.h"
 #include "output_file.h"
 #include "proxy_mesh.h"
 #include "text_numbers.h"
@@ -10,13 +11,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <string>
 
 namespace throng {
 namespace {
-
-constexpr std::size_t flush_bytes = 1 << 22;
 
 // A USD string literal: double-quoted, backslash escapes for \, " and line breaks.
 std::string usd_string(const std::string& s) {
@@ -30,21 +31,6 @@ std::string usd_string(const std::string& s) {
     out += c;
   }
   return out + '"';
-}
-
-// The value a quath stores: the nearest half-precision number, ties to even (written as text of that exact value,
-// so a reader's half parse gives it back unchanged). Computed, not cast through _Float16, which clang 14 does not
-// support on x86-64 (the asan preset builds with it): 11 significant bits above 2^-14, steps of 2^-24 below, and
-// infinity from 65520 up (it rounds past the largest half, 65504). Agreed with GCC's _Float16 cast on 7.5 million
-// values (every half, its neighbours and the midpoints between halves among them).
-float as_half(double v) {
-  if (!std::isfinite(v)) return static_cast<float>(v);
-  const double magnitude = std::fabs(v);
-  if (magnitude >= 65520.0) return static_cast<float>(std::copysign(HUGE_VAL, v));
-  int exponent = 0;
-  (void)std::frexp(magnitude, &exponent);  // magnitude = m · 2^exponent, m in [0.5, 1)
-  const double step = std::ldexp(1.0, std::max(exponent, -13) - 11);
-  return static_cast<float>(std::copysign(std::nearbyint(magnitude / step) * step, v));
 }
 
 // Species colours for the prototypes (displayColor), cycled.
@@ -80,45 +66,51 @@ class UsdWriter {
     header();
     text_ += "def Xform \"Crowd\"\n{\n    def PointInstancer \"Agents\"\n    {\n";
     constant_attributes();
-    time_samples("point3f[] positions", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent([&](std::size_t n, std::string& part) {
-        const Eigen::Vector3d p = poses.position(t, n);
-        part += n ? ", (" : "(";
-        for (int k = 0; k < 3; ++k) {
-          if (k) part += ", ";
-          detail::append_number(part, static_cast<float>(p[k]));
-        }
-        part += ')';
-      });
+    time_samples("point3f[] positions", 40, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
+      const Eigen::Vector3d p = poses.position(t, n);
+      char* c = out.room(8 + 3 * detail::max_number_chars);
+      c = detail::put_text(c, n ? ", (" : "(");
+      c = detail::put_number(c, static_cast<float>(p.x()));
+      c = detail::put_text(c, ", ");
+      c = detail::put_number(c, static_cast<float>(p.y()));
+      c = detail::put_text(c, ", ");
+      c = detail::put_number(c, static_cast<float>(p.z()));
+      *c++ = ')';
+      out.advance(c);
     });
-    time_samples("quath[] orientations", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent([&](std::size_t n, std::string& part) {
-        const Eigen::Quaterniond q = poses.facing(t, n);
-        part += n ? ", (" : "(";
-        const std::array<double, 4> wxyz{q.w(), q.x(), q.y(), q.z()};
-        for (int k = 0; k < 4; ++k) {
-          if (k) part += ", ";
-          detail::append_number(part, as_half(wxyz[static_cast<std::size_t>(k)]));
-        }
-        part += ')';
-      });
+    time_samples("quath[] orientations", 32, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
+      const Eigen::Quaterniond q = poses.facing(t, n);
+      char* c = out.room(12 + 4 * detail::max_number_chars);
+      c = detail::put_text(c, n ? ", (" : "(");
+      c = detail::put_half(c, q.w());
+      c = detail::put_text(c, ", ");
+      c = detail::put_half(c, q.x());
+      c = detail::put_text(c, ", ");
+      c = detail::put_half(c, q.y());
+      c = detail::put_text(c, ", ");
+      c = detail::put_half(c, q.z());
+      *c++ = ')';
+      out.advance(c);
     });
-    time_samples("int64[] invisibleIds", [&](detail::AgentPoses& poses, std::size_t t) {
-      bool first = true;
-      for (std::size_t n = 0; n < m_.agent_count(); ++n) {
-        if (poses.present(t, n)) continue;
-        if (!first) text_ += ", ";
-        first = false;
-        detail::append_number(text_, m_.ids[n]);
-      }
-    });
-    text_ += "        int[] primvars:throng:action (\n            interpolation = \"vertex\"\n        )\n";
-    time_samples("int[] primvars:throng:action", [&](detail::AgentPoses& poses, std::size_t t) {
-      per_agent([&](std::size_t n, std::string& part) {
-        if (n) part += ", ";
-        // An absent agent is invisible; its stored action is −1 (none), written as the table's first entry.
-        detail::append_number(part, std::max(poses.action(t, n), std::int32_t{0}));
-      });
+    // The ids of the absent agents: few, listed by the frame's head (one pass over presence, no per-agent text).
+    time_samples(
+        "int64[] invisibleIds", 0, [](detail::AgentPoses&, std::size_t, std::size_t, detail::TextBuffer&) {},
+        [&](std::size_t t, detail::TextBuffer& out) {
+          bool first = true;
+          for (std::size_t n = 0; n < m_.agent_count(); ++n) {
+            if (m_.present(t, n)) continue;
+            char* c = out.room(2 + detail::max_number_chars);
+            if (!first) c = detail::put_text(c, ", ");
+            first = false;
+            out.advance(detail::put_number(c, m_.ids[n]));
+          }
+        });
+    write_text("        int[] primvars:throng:action (\n            interpolation = \"vertex\"\n        )\n");
+    time_samples("int[] primvars:throng:action", 4, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
+      char* c = out.room(2 + detail::max_number_chars);
+      if (n) c = detail::put_text(c, ", ");
+      // An absent agent is invisible; its stored action is −1 (none), written as the table's first entry.
+      out.advance(detail::put_number(c, std::max(poses.action(t, n), std::int32_t{0})));
     });
     prototypes();
     text_ += "    }\n}\n";
@@ -126,10 +118,10 @@ class UsdWriter {
   }
 
  private:
-  // One frame's values, agent ranges formatted in parallel and appended in order.
-  template <class Format>
-  void per_agent(Format format) {
-    detail::for_agent_ranges<std::string>(m_.agent_count(), format, [&](const std::string& part) { text_ += part; });
+  void write_text(const std::string& text) {
+    text_ += text;
+    file_.write(text_);
+    text_.clear();
   }
 
   void header() {
@@ -197,23 +189,24 @@ class UsdWriter {
     text_ += "        custom uniform string[] throng:actionProps = [" + props + "]\n";
   }
 
-  // `declaration`.timeSamples = { code: [values], ... }, one line per frame; each pass walks the frames in order
-  // with its own pose stream.
-  template <class Values>
-  void time_samples(const std::string& declaration, Values values) {
+  // `declaration`.timeSamples = { code: [values], ... }, one line per frame, streamed (detail::stream_frame_text):
+  // item(poses, t, n, out) writes agent n's value at frame t (its own separator first), in parallel over agent
+  // ranges, each pass with its own pose stream; head(t, out) may write the frame's values itself.
+  template <class Item, class Head = void (*)(std::size_t, detail::TextBuffer&)>
+  void time_samples(const std::string& declaration, std::size_t bytes_per_agent, Item item,
+                    Head head = [](std::size_t, detail::TextBuffer&) {}) {
     detail::AgentPoses poses(m_, options_.pose);
-    text_ += "        " + declaration + ".timeSamples = {\n";
-    for (std::size_t t = 0; t < m_.frame_count(); ++t) {
-      text_ += "            ";
-      detail::append_number(text_, clock_.codes[t]);
-      text_ += ": [";
-      values(poses, t);
-      text_ += "],\n";
-      if (text_.size() > flush_bytes) {
-        file_.write(text_);
-        text_.clear();
-      }
-    }
+    write_text("        " + declaration + ".timeSamples = {\n");
+    detail::stream_frame_text(
+        file_, m_.frame_count(), m_.agent_count(), {.bytes_per_agent = std::max<std::size_t>(bytes_per_agent, 1)},
+        [&](std::size_t t, detail::TextBuffer& out) {
+          out.append("            ");
+          out.advance(detail::put_number(out.room(detail::max_number_chars), clock_.codes[t]));
+          out.append(": [");
+          head(t, out);
+        },
+        [&](std::size_t t, std::size_t n, detail::TextBuffer& out) { item(poses, t, n, out); },
+        [](std::size_t, detail::TextBuffer& out) { out.append("],\n"); });
     text_ += "        }\n";
   }
 
