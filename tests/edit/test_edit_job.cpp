@@ -129,3 +129,99 @@ TEST_CASE("the local block: parts as a count or auto, vertices_per_part, and bad
   CHECK_THROWS_WITH(parse("local: {parts: [1, 2]}\n"), Contains("local.parts") && Contains("a part count or auto"));
   CHECK_THROWS_AS(parse("local: {parts: auto, vertices_per_part: -5}\n"), ConfigError);
 }
+
+namespace {
+
+const char* kinds_job = R"(
+formation:
+  splits:
+    - {agents: [100, 101], frames: [10, end]}
+    - {agents: [102]}
+constraints:
+  - {type: acceleration, agent: 100, frame: 12, acceleration: [0.5, -1]}
+  - {type: acceleration, agent: 101, frame: -1}
+  - {type: sum, agents: [100, 101, 102], weights: [0.5, 0.25, 0.25], frames: [3, 8], value: [1, 2]}
+  - {type: sum, agents: [100, 101]}
+  - type: row
+    terms:
+      - {agent: 100, frame: 10, axis: x, coefficient: 2}
+      - {agent: 101, frame: -3, axis: y}
+    value: 1.5
+)";
+
+}  // namespace
+
+TEST_CASE("acceleration, sum, row and formation splits: every key read, and read back from the effective job") {
+  const edit::Job job = parse(kinds_job);
+  const auto& splits = job.options.formation.splits;
+  REQUIRE(splits.size() == 2);
+  CHECK(splits[0].agents == std::vector<std::int64_t>{100, 101});
+  CHECK((splits[0].first_frame == 10 && splits[0].last_frame == std::numeric_limits<std::size_t>::max()));
+  CHECK((splits[1].first_frame == 0 && splits[1].last_frame == std::numeric_limits<std::size_t>::max()));
+  const auto& c = job.request.constraints;
+  REQUIRE(c.size() == 5);
+  const auto& a = std::get<edit::Acceleration>(c[0]);
+  CHECK((a.agent == 100 && a.frame == 12 && a.acceleration == Eigen::Vector2d(0.5, -1)));
+  CHECK(std::get<edit::Acceleration>(c[1]).frame == -1);
+  CHECK(std::get<edit::Acceleration>(c[1]).acceleration == Eigen::Vector2d::Zero());  // default: zero acceleration
+  const auto& s = std::get<edit::Sum>(c[2]);
+  CHECK(s.agents == std::vector<std::int64_t>{100, 101, 102});
+  CHECK(s.weights == std::vector<double>{0.5, 0.25, 0.25});
+  CHECK((s.first_frame == 3 && s.last_frame == 8 && *s.value == Eigen::Vector2d(1, 2)));
+  const auto& centroid = std::get<edit::Sum>(c[3]);
+  CHECK((centroid.weights.empty() && !centroid.value && centroid.first_frame == 0 && centroid.last_frame == -1));
+  const auto& row = std::get<edit::Row>(c[4]);
+  REQUIRE(row.terms.size() == 2);
+  CHECK((row.terms[0].agent == 100 && row.terms[0].frame == 10 && row.terms[0].axis == 0 && row.terms[0].coefficient == 2));
+  CHECK((row.terms[1].frame == -3 && row.terms[1].axis == 1 && row.terms[1].coefficient == 1));  // default coefficient 1
+  CHECK(row.value == 1.5);
+
+  const std::string text = to_yaml_text(effective_job(job));
+  const edit::Job again = parse(text);
+  CHECK(to_yaml_text(effective_job(again)) == text);
+  CHECK_THAT(text, Contains("type: acceleration") && Contains("type: sum") && Contains("type: row") && Contains("axis: y") &&
+                       Contains("splits:") && Contains("[10, end]"));
+  REQUIRE(again.request.constraints.size() == 5);
+  CHECK(std::get<edit::Row>(again.request.constraints[4]).terms[1].frame == -3);
+  CHECK(std::get<edit::Sum>(again.request.constraints[2]).weights == s.weights);
+  CHECK(again.options.formation.splits.size() == 2);
+}
+
+TEST_CASE("malformed acceleration, sum, row and split entries are configuration errors naming the line") {
+  auto c = [](const std::string& entry) { return parse("constraints:\n  - " + entry + "\n"); };
+  CHECK_THROWS_WITH(c("{type: acceleration, frame: 3}"), Contains("edit.yaml:2") && Contains("agent"));
+  CHECK_THROWS_WITH(c("{type: acceleration, agent: 1}"), Contains("frame"));
+  CHECK_THROWS_WITH(c("{type: acceleration, agent: 1, frame: 3, acceleration: [1]}"), Contains("acceleration"));
+  CHECK_THROWS_WITH(c("{type: acceleration, agent: 1, frame: 3, acceleration: [.nan, 0]}"), Contains("finite"));
+  CHECK_THROWS_WITH(c("{type: acceleration, agent: 1, frame: 3, speed: 2}"), Contains("speed"));
+  CHECK_THROWS_WITH(c("{type: sum, frames: [0, 3]}"), Contains("agents"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: []}"), Contains("a sum needs at least one agent"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2, 1]}"), Contains("agent 1 is named twice"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2], weights: [1]}"), Contains("1 weights for 2 agents"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2], weights: [0, 0]}"), Contains("every weight is 0"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2], weights: [1, .inf]}"), Contains("finite"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2], value: [1, 2, 3]}"), Contains("value"));
+  CHECK_THROWS_WITH(c("{type: sum, agents: [1, 2], frames: [1]}"), Contains("expected [first, last]"));
+  CHECK_THROWS_WITH(c("{type: row, value: 1}"), Contains("terms"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [], value: 1}"), Contains("a row needs at least one term"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x}]}"), Contains("value"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: z}], value: 1}"), Contains("unknown axis 'z': expected x or y"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2}], value: 1}"), Contains("axis"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{frame: 2, axis: x}], value: 1}"), Contains("agent"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x, coefficient: .nan}], value: 1}"), Contains("finite"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x}], value: .inf}"), Contains("finite"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x, coefficient: 0}], value: 1}"),
+                    Contains("every coefficient is 0"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x}, {agent: 1, frame: 2, axis: x, coefficient: 3}], value: 1}"),
+                    Contains("the same coordinate as terms[0] (agent 1, frame 2, x)"));
+  CHECK_THROWS_WITH(c("{type: row, terms: [{agent: 1, frame: 2, axis: x, weight: 3}], value: 1}"), Contains("weight"));
+  auto split = [](const std::string& entry) { return parse("formation:\n  splits:\n    - " + entry + "\n"); };
+  CHECK_THROWS_WITH(split("{frames: [0, 4]}"), Contains("edit.yaml:3") && Contains("agents"));
+  CHECK_THROWS_WITH(split("{agents: []}"), Contains("a split needs the agents of one side"));
+  CHECK_THROWS_WITH(split("{agents: [4, 4]}"), Contains("agent 4 is named twice"));
+  CHECK_THROWS_WITH(split("{agents: [4], frames: [-1, 4]}"), Contains("negative: frames are indices into the input"));
+  CHECK_THROWS_WITH(split("{agents: [4], frames: [9, 4]}"), Contains("first frame 9 is after the last 4"));
+  CHECK_THROWS_WITH(split("{agents: [4], frames: [9]}"), Contains("expected [first, last]"));
+  CHECK_THROWS_WITH(split("{agents: [4], side: left}"), Contains("side"));
+  CHECK_THROWS_WITH(c("{type: jerk, agent: 1}"), Contains("expected relative_position, velocity, on_line, acceleration, sum or row"));
+}

@@ -34,6 +34,14 @@ std::vector<std::size_t> constrained_frames(const Request& request, std::size_t 
             // (p(f + 1) − p(f)) / Δt, the backward difference at the clip's last frame: both frames hold.
             const long f = clip.absolute(k.frame), f0 = f < static_cast<long>(clip.last) ? f : f - 1;
             clip.add_range(f0, f0 + 1, out);
+          } else if constexpr (std::is_same_v<T, Acceleration>) {
+            // The three frames of its second difference: f − 1, f, f + 1, or the three nearest at the clip's ends.
+            if (clip.last >= clip.first + 2) {  // (the editor refuses an acceleration in a shorter clip)
+              const long f = std::clamp(clip.absolute(k.frame), static_cast<long>(clip.first) + 1, static_cast<long>(clip.last) - 1);
+              clip.add_range(f - 1, f + 1, out);
+            }
+          } else if constexpr (std::is_same_v<T, Row>) {
+            for (const RowTerm& t : k.terms) clip.add_range(t.frame, t.frame, out);
           } else {
             clip.add_range(k.first_frame, k.last_frame, out);
           }

@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -94,6 +95,85 @@ std::pair<std::size_t, std::size_t> velocity_frames(const Clip& clip, std::size_
   return frame < clip.last_frame ? std::pair{frame, frame + 1} : std::pair{frame - 1, frame};
 }
 
+// The three frames an acceleration constraint fits its parabola to: (f − 1, f, f + 1), or the three nearest
+// inside the clip at its ends (f, f + 1, f + 2 at the first frame; f − 2, f − 1, f at the last).
+std::array<std::size_t, 3> acceleration_frames(const Clip& clip, std::size_t frame, const std::string& where) {
+  if (clip.last_frame < clip.first_frame + 2) {
+    throw ConfigError(where + ": an acceleration needs three frames, and the clip " + clip_range(clip) + " has " +
+                      std::to_string(clip.last_frame - clip.first_frame + 1));
+  }
+  const std::size_t middle = std::clamp(frame, clip.first_frame + 1, clip.last_frame - 1);
+  return {middle - 1, middle, middle + 1};
+}
+
+// A Sum's agents (graph indices) and weights (1/n by default), checked: agents given and distinct, one finite
+// weight per agent, not all zero, a finite value.
+std::pair<std::vector<std::size_t>, std::vector<double>> sum_terms(const Clip& clip, const std::vector<std::int64_t>& crowd_ids,
+                                                                   const Sum& c, const std::string& where) {
+  if (c.agents.empty()) throw ConfigError(where + ".agents: no agent given: a sum needs at least one");
+  std::vector<std::size_t> agents;
+  for (std::size_t i = 0; i < c.agents.size(); ++i) {
+    const std::string entry = where + ".agents[" + std::to_string(i) + "]";
+    const std::size_t a = agent(clip, crowd_ids, c.agents[i], entry);
+    if (std::find(agents.begin(), agents.end(), a) != agents.end()) {
+      throw ConfigError(entry + ": agent " + std::to_string(c.agents[i]) + " is named twice");
+    }
+    agents.push_back(a);
+  }
+  std::vector<double> weights = c.weights;
+  if (weights.empty()) weights.assign(agents.size(), 1.0 / static_cast<double>(agents.size()));
+  if (weights.size() != agents.size()) {
+    throw ConfigError(where + ".weights: " + std::to_string(weights.size()) + " weights for " + std::to_string(agents.size()) +
+                      " agents (give one per agent, or none for 1/n each)");
+  }
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    if (!std::isfinite(weights[i])) throw ConfigError(where + ".weights[" + std::to_string(i) + "] is not finite");
+  }
+  if (std::all_of(weights.begin(), weights.end(), [](double w) { return w == 0.0; })) {
+    throw ConfigError(where + ".weights: every weight is 0, so the row says nothing");
+  }
+  if (c.value && !c.value->allFinite()) throw ConfigError(where + ".value " + point(*c.value) + " is not finite");
+  return {agents, weights};
+}
+
+// A Row's terms as (graph agent, input frame, axis, coefficient), checked: terms given, agents in the clip,
+// frames in it, axis 0 or 1, finite coefficients not all zero, no (agent, frame, axis) twice, a finite value.
+struct ResolvedTerm {
+  std::size_t agent = 0, frame = 0;
+  int axis = 0;
+  double coefficient = 0;
+};
+
+std::vector<ResolvedTerm> row_terms(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, const Row& c,
+                                    const std::string& where) {
+  if (c.terms.empty()) throw ConfigError(where + ".terms: no term given: a row needs at least one");
+  if (!std::isfinite(c.value)) throw ConfigError(where + ".value is not finite");
+  std::vector<ResolvedTerm> out;
+  for (std::size_t i = 0; i < c.terms.size(); ++i) {
+    const RowTerm& t = c.terms[i];
+    const std::string entry = where + ".terms[" + std::to_string(i) + "]";
+    ResolvedTerm r;
+    r.agent = agent(clip, crowd_ids, t.agent, entry + ".agent");
+    r.frame = absolute_frame(clip, t.frame, entry + ".frame");
+    if (t.axis != 0 && t.axis != 1) throw ConfigError(entry + ".axis " + std::to_string(t.axis) + ": expected x (0) or y (1)");
+    r.axis = t.axis;
+    if (!std::isfinite(t.coefficient)) throw ConfigError(entry + ".coefficient is not finite");
+    r.coefficient = t.coefficient;
+    for (std::size_t j = 0; j < out.size(); ++j) {
+      if (out[j].agent == r.agent && out[j].frame == r.frame && out[j].axis == r.axis) {
+        throw ConfigError(entry + ": the same coordinate as " + where + ".terms[" + std::to_string(j) + "] (agent " +
+                          std::to_string(t.agent) + ", frame " + std::to_string(r.frame) + ", " + (r.axis == 0 ? "x" : "y") +
+                          "): add their coefficients into one term");
+      }
+    }
+    out.push_back(r);
+  }
+  if (std::all_of(out.begin(), out.end(), [](const ResolvedTerm& t) { return t.coefficient == 0.0; })) {
+    throw ConfigError(where + ".terms: every coefficient is 0, so the row says nothing");
+  }
+  return out;
+}
+
 std::vector<std::size_t> selected_agents(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, const std::vector<std::int64_t>& ids,
                                          const std::string& where) {
   std::vector<std::size_t> out;
@@ -131,8 +211,17 @@ std::string describe(const Request& request, std::size_t k) {
           out << "position of agent " << c.agent << " relative to agent " << c.other;
         } else if constexpr (std::is_same_v<T, Velocity>) {
           out << "velocity of agent " << c.agent << " at frame " << c.frame;
-        } else {
+        } else if constexpr (std::is_same_v<T, OnLine>) {
           out << "agent " << c.agent << " on a line";
+        } else if constexpr (std::is_same_v<T, Acceleration>) {
+          out << "acceleration of agent " << c.agent << " at frame " << c.frame;
+        } else if constexpr (std::is_same_v<T, Sum>) {
+          out << "sum over agent" << (c.agents.size() == 1 ? " " : "s ");
+          for (std::size_t i = 0; i < c.agents.size() && i < 6; ++i) out << (i > 0 ? ", " : "") << c.agents[i];
+          if (c.agents.size() > 6) out << ", ... (" << c.agents.size() << " agents)";
+        } else {
+          out << "row of " << c.terms.size() << " term" << (c.terms.size() == 1 ? "" : "s");
+          if (!c.terms.empty()) out << " from agent " << c.terms.front().agent << " at frame " << c.terms.front().frame;
         }
       },
       request.constraints[k]);
@@ -160,12 +249,23 @@ std::vector<std::size_t> required_frames(const Request& request, const Clip& cli
     std::visit(
         [&](const auto& c) {
           using T = std::decay_t<decltype(c)>;
-          (void)agent(clip, crowd_ids, c.agent, where + ".agent");
-          if constexpr (std::is_same_v<T, Velocity>) {
+          if constexpr (std::is_same_v<T, Sum>) {
+            (void)sum_terms(clip, crowd_ids, c, where);
+            const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
+            for (std::size_t f = first; f <= last; ++f) frames.push_back(f);
+          } else if constexpr (std::is_same_v<T, Row>) {
+            for (const ResolvedTerm& t : row_terms(clip, crowd_ids, c, where)) frames.push_back(t.frame);
+          } else if constexpr (std::is_same_v<T, Acceleration>) {
+            (void)agent(clip, crowd_ids, c.agent, where + ".agent");
+            if (!c.acceleration.allFinite()) throw ConfigError(where + ".acceleration " + point(c.acceleration) + " is not finite");
+            for (std::size_t f : acceleration_frames(clip, absolute_frame(clip, c.frame, where + ".frame"), where)) frames.push_back(f);
+          } else if constexpr (std::is_same_v<T, Velocity>) {
+            (void)agent(clip, crowd_ids, c.agent, where + ".agent");
             const auto [f0, f1] = velocity_frames(clip, absolute_frame(clip, c.frame, where + ".frame"));
             frames.push_back(f0);
             frames.push_back(f1);
           } else {
+            (void)agent(clip, crowd_ids, c.agent, where + ".agent");
             if constexpr (std::is_same_v<T, RelativePosition>) {
               (void)agent(clip, crowd_ids, c.other, where + ".other");
               if (c.other == c.agent) throw ConfigError(where + ": agent and other are both " + std::to_string(c.agent));
@@ -275,7 +375,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
   out.handle_basis.makeCompressed();
   out.handle_coordinates = Eigen::Map<const Eigen::VectorXd>(coordinates.data(), static_cast<Index>(coordinates.size()));
 
-  // General constraints, one or two rows per sample.
+  // General constraints: one or two rows per sample they cover (a Row: one row).
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<double> d;
   auto row = [&](std::size_t source, std::initializer_list<std::pair<Index, double>> terms, double value) {
@@ -284,41 +384,101 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     d.push_back(value);
     out.row_source.push_back(source);
   };
+  // Kinds on one agent: relative position, velocity, on a line, acceleration.
+  auto add_agent_rows = [&](std::size_t k, const auto& c, const std::string& where) {
+    using T = std::decay_t<decltype(c)>;
+    const std::size_t a = agent(clip, crowd_ids, c.agent, where + ".agent");
+    if constexpr (std::is_same_v<T, Acceleration>) {
+      if (!c.acceleration.allFinite()) throw ConfigError(where + ".acceleration " + point(c.acceleration) + " is not finite");
+      const auto f = acceleration_frames(clip, absolute_frame(clip, c.frame, where + ".frame"), where);
+      std::array<Index, 3> v{};
+      std::array<double, 3> t{};
+      for (std::size_t i = 0; i < 3; ++i) {
+        const std::size_t sample = sample_at(clip, static_cast<Frame>(f[i]), where + ".frame");
+        v[i] = clip.vertex(sample, a);
+        t[i] = clip.times[sample];
+      }
+      // (h1 p0 − (h0 + h1) p1 + h0 p2) / h̄ = a h0 h1, h̄ = (h0 + h1)/2: the three-point second difference
+      // times h0 h1, in metres (p0 − 2 p1 + p2 = a Δt² at equal spacing).
+      const double h0 = t[1] - t[0], h1 = t[2] - t[1], mean = 0.5 * (h0 + h1);
+      for (int axis = 0; axis < 2; ++axis) {
+        row(k, {{2 * v[0] + axis, h1 / mean}, {2 * v[1] + axis, -(h0 + h1) / mean}, {2 * v[2] + axis, h0 / mean}},
+            c.acceleration[axis] * h0 * h1);
+      }
+    } else if constexpr (std::is_same_v<T, Velocity>) {
+      if (!c.velocity.allFinite()) throw ConfigError(where + ".velocity is not finite");
+      const auto [f0, f1] = velocity_frames(clip, absolute_frame(clip, c.frame, where + ".frame"));
+      const std::size_t s0 = sample_at(clip, static_cast<Frame>(f0), where + ".frame");
+      const std::size_t s1 = sample_at(clip, static_cast<Frame>(f1), where + ".frame");
+      const double dt = clip.times[s1] - clip.times[s0];
+      const Index v0 = clip.vertex(s0, a), v1 = clip.vertex(s1, a);
+      for (int axis = 0; axis < 2; ++axis) row(k, {{2 * v1 + axis, 1.0}, {2 * v0 + axis, -1.0}}, c.velocity[axis] * dt);
+    } else {
+      const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
+      const auto samples = samples_in(clip, first, last, where);
+      if constexpr (std::is_same_v<T, RelativePosition>) {
+        const std::size_t b = agent(clip, crowd_ids, c.other, where + ".other");
+        if (c.offset && !c.offset->allFinite()) throw ConfigError(where + ".offset is not finite");
+        for (std::size_t s : samples) {
+          const Eigen::Vector2d offset = c.offset.value_or(original(clip, s, a) - original(clip, s, b));
+          const Index va = clip.vertex(s, a), vb = clip.vertex(s, b);
+          for (int axis = 0; axis < 2; ++axis) row(k, {{2 * va + axis, 1.0}, {2 * vb + axis, -1.0}}, offset[axis]);
+        }
+      } else {
+        if (!c.point.allFinite() || !c.direction.allFinite() || !(c.direction.norm() > 0)) {
+          throw ConfigError(where + ": point and direction must be finite, direction non-zero");
+        }
+        const Eigen::Vector2d normal = Eigen::Vector2d(-c.direction.y(), c.direction.x()).normalized();
+        for (std::size_t s : samples) {
+          const Index v = clip.vertex(s, a);
+          row(k, {{2 * v, normal.x()}, {2 * v + 1, normal.y()}}, normal.dot(c.point));
+        }
+      }
+    }
+  };
+  // Σ_k w_k p(agent_k) = value, both axes, at every sample of the range.
+  auto add_sum_rows = [&](std::size_t k, const Sum& c, const std::string& where) {
+    const auto [agents, weights] = sum_terms(clip, crowd_ids, c, where);
+    const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
+    for (std::size_t s : samples_in(clip, first, last, where)) {
+      Eigen::Vector2d value = Eigen::Vector2d::Zero();
+      if (c.value) {
+        value = *c.value;
+      } else {
+        for (std::size_t i = 0; i < agents.size(); ++i) value += weights[i] * original(clip, s, agents[i]);
+      }
+      for (int axis = 0; axis < 2; ++axis) {
+        const auto r = static_cast<Index>(d.size());
+        for (std::size_t i = 0; i < agents.size(); ++i) {
+          if (weights[i] != 0.0) entries.emplace_back(r, 2 * clip.vertex(s, agents[i]) + axis, weights[i]);
+        }
+        d.push_back(value[axis]);
+        out.row_source.push_back(k);
+      }
+    }
+  };
+  // Σ_j c_j p(agent_j, frame_j)[axis_j] = value: one row (zero coefficients left out).
+  auto add_user_row = [&](std::size_t k, const Row& c, const std::string& where) {
+    const auto r = static_cast<Index>(d.size());
+    const std::vector<ResolvedTerm> terms = row_terms(clip, crowd_ids, c, where);
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const std::size_t sample = sample_at(clip, static_cast<Frame>(terms[i].frame), where + ".terms[" + std::to_string(i) + "].frame");
+      if (terms[i].coefficient != 0.0) entries.emplace_back(r, 2 * clip.vertex(sample, terms[i].agent) + terms[i].axis, terms[i].coefficient);
+    }
+    d.push_back(c.value);
+    out.row_source.push_back(k);
+  };
   for (std::size_t k = 0; k < request.constraints.size(); ++k) {
     const std::string where = "constraints[" + std::to_string(k) + "]";
     std::visit(
         [&](const auto& c) {
           using T = std::decay_t<decltype(c)>;
-          const std::size_t a = agent(clip, crowd_ids, c.agent, where + ".agent");
-          if constexpr (std::is_same_v<T, Velocity>) {
-            if (!c.velocity.allFinite()) throw ConfigError(where + ".velocity is not finite");
-            const auto [f0, f1] = velocity_frames(clip, absolute_frame(clip, c.frame, where + ".frame"));
-            const std::size_t s0 = sample_at(clip, static_cast<Frame>(f0), where + ".frame");
-            const std::size_t s1 = sample_at(clip, static_cast<Frame>(f1), where + ".frame");
-            const double dt = clip.times[s1] - clip.times[s0];
-            const Index v0 = clip.vertex(s0, a), v1 = clip.vertex(s1, a);
-            for (int axis = 0; axis < 2; ++axis) row(k, {{2 * v1 + axis, 1.0}, {2 * v0 + axis, -1.0}}, c.velocity[axis] * dt);
+          if constexpr (std::is_same_v<T, Sum>) {
+            add_sum_rows(k, c, where);
+          } else if constexpr (std::is_same_v<T, Row>) {
+            add_user_row(k, c, where);
           } else {
-            const auto [first, last] = clamp_range(clip, c.first_frame, c.last_frame, where);
-            const auto samples = samples_in(clip, first, last, where);
-            if constexpr (std::is_same_v<T, RelativePosition>) {
-              const std::size_t b = agent(clip, crowd_ids, c.other, where + ".other");
-              if (c.offset && !c.offset->allFinite()) throw ConfigError(where + ".offset is not finite");
-              for (std::size_t s : samples) {
-                const Eigen::Vector2d offset = c.offset.value_or(original(clip, s, a) - original(clip, s, b));
-                const Index va = clip.vertex(s, a), vb = clip.vertex(s, b);
-                for (int axis = 0; axis < 2; ++axis) row(k, {{2 * va + axis, 1.0}, {2 * vb + axis, -1.0}}, offset[axis]);
-              }
-            } else {
-              if (!c.point.allFinite() || !c.direction.allFinite() || !(c.direction.norm() > 0)) {
-                throw ConfigError(where + ": point and direction must be finite, direction non-zero");
-              }
-              const Eigen::Vector2d normal = Eigen::Vector2d(-c.direction.y(), c.direction.x()).normalized();
-              for (std::size_t s : samples) {
-                const Index v = clip.vertex(s, a);
-                row(k, {{2 * v, normal.x()}, {2 * v + 1, normal.y()}}, normal.dot(c.point));
-              }
-            }
+            add_agent_rows(k, c, where);
           }
         },
         request.constraints[k]);

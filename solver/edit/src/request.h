@@ -15,7 +15,8 @@ namespace throng::edit {
 /// The request in solver terms. Unknown 2v is x of vertex v, 2v + 1 its y.
 ///   handle_vertices  #handles graph vertices, increasing;   handle_targets  #handles by 2 (metres)
 ///   C                #rows by 2·#vertices;                    d               #rows
-///   row_source       #rows, the index k of constraints[k] each row comes from
+///   row_source       #rows, the index k of constraints[k] each row comes from (a row per axis and sample of
+///                    a relative position, velocity, acceleration or sum; one per sample on a line; one per Row)
 ///   handle_basis     2·#handles by #coordinates, handle_coordinates #coordinates: the pinned unknowns (in the
 ///                    order of pinned_unknowns()) are handle_basis · handle_coordinates. A pin has 2 coordinates
 ///                    (its position); a drag 4 (cos θ, sin θ, t): each of its vertices goes to R(θ) p + t with
@@ -34,16 +35,18 @@ struct ResolvedRequest {
   [[nodiscard]] std::vector<Eigen::Index> pinned_unknowns() const;
 };
 
-/// The source frames the request names, to be made samples: pin frames, both frames of each velocity, and every
-/// frame of every drag and constraint range (clamped to the clip), so that the output, which passes through the
-/// samples, meets each handle and constraint at every frame it covers (not only at the regular samples). Validates agents and frames against `clip`
+/// The source frames the request names, to be made samples: pin frames, both frames of each velocity, the three
+/// frames of each acceleration, every frame a row's terms name, and every frame of every drag and constraint range
+/// (clamped to the clip), so that the output, which passes through the samples, meets each handle and constraint
+/// at every frame it covers (not only at the regular samples). Validates agents and frames against `clip`
 /// (built without them; crowd_ids are all the crowd's ids, for messages) and throws ConfigError naming the entry, for example "pins[2].frame 400 is outside
 /// the clip [0, 299]" or "drags[0].agents: agent 17 is absent at some frames of the clip ...".
 [[nodiscard]] std::vector<std::size_t> required_frames(const Request& request, const Clip& clip,
                                                      const std::vector<std::int64_t>& crowd_ids);
 
-/// Resolves the request on the final clip. Frames of pins and velocities must be samples (ConfigError
-/// otherwise); ranges act on the samples inside them. Two handles placing one vertex differently are a
+/// Resolves the request on the final clip. Frames of pins, velocities, accelerations and rows must be samples
+/// (ConfigError otherwise); ranges act on the samples inside them. A constraint's entries are checked as
+/// required_frames checks them (agents, frames, finite numbers, a sum's weights, a row's distinct non-zero terms). Two handles placing one vertex differently are a
 /// NumericalError (contradictory).
 [[nodiscard]] ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids);
 

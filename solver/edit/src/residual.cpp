@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace throng::edit {
@@ -85,22 +87,56 @@ double max_request_residual(const CrowdMotion& crowd, const CrowdMotion& edited,
     std::visit(
         [&](const auto& k) {
           using T = std::decay_t<decltype(k)>;
-          const auto [ca, ea] = agent(k.agent);
-          if constexpr (std::is_same_v<T, Velocity>) {
-            const std::size_t f = clip.absolute(k.frame);
-            const std::size_t f0 = f < clip.last ? f : f - 1, f1 = f0 + 1;
-            const double dt = crowd.times[f1] - crowd.times[f0];
-            record((result(f1, ea) - result(f0, ea) - k.velocity * dt).norm());
-          } else {
+          if constexpr (std::is_same_v<T, Sum>) {
+            std::vector<std::pair<std::size_t, std::size_t>> agents;
+            for (std::int64_t id : k.agents) agents.push_back(agent(id));
+            std::vector<double> weights = k.weights;
+            if (weights.empty()) weights.assign(agents.size(), 1.0 / static_cast<double>(agents.size()));
+            if (weights.size() != agents.size()) throw std::invalid_argument("max_request_residual: a sum's weights do not match its agents");
             const auto [from, to] = clip.range(k.first_frame, k.last_frame);
             for (std::size_t f = from; f <= to && from <= to; ++f) {
-              if constexpr (std::is_same_v<T, RelativePosition>) {
-                const auto [cb, eb] = agent(k.other);
-                const Eigen::Vector2d offset = k.offset.value_or(original(f, ca) - original(f, cb));
-                record((result(f, ea) - result(f, eb) - offset).norm());
-              } else {
-                const Eigen::Vector2d normal = Eigen::Vector2d(-k.direction.y(), k.direction.x()).normalized();
-                record(std::abs(normal.dot(result(f, ea) - k.point)));
+              Eigen::Vector2d sum = Eigen::Vector2d::Zero(), value = Eigen::Vector2d::Zero();
+              for (std::size_t i = 0; i < agents.size(); ++i) {
+                sum += weights[i] * result(f, agents[i].second);
+                value += weights[i] * original(f, agents[i].first);
+              }
+              record((sum - k.value.value_or(value)).norm());
+            }
+          } else if constexpr (std::is_same_v<T, Row>) {
+            // The distance of the output's coordinates to the row's hyperplane: |Σ c x − value| / ‖c‖.
+            double sum = 0, norm2 = 0;
+            for (const RowTerm& t : k.terms) {
+              sum += t.coefficient * result(clip.absolute(t.frame), agent(t.agent).second)[t.axis];
+              norm2 += t.coefficient * t.coefficient;
+            }
+            if (norm2 > 0) record(std::abs(sum - k.value) / std::sqrt(norm2));
+          } else {
+            const auto [ca, ea] = agent(k.agent);
+            if constexpr (std::is_same_v<T, Acceleration>) {
+              // The three frames the editor fits (edit.h), the row times h0 h1 (metres).
+              if (clip.last < clip.first + 2) throw std::invalid_argument("max_request_residual: an acceleration in a clip of fewer than 3 frames");
+              const std::size_t f1 = std::clamp(clip.absolute(k.frame), clip.first + 1, clip.last - 1);
+              const std::size_t f0 = f1 - 1, f2 = f1 + 1;
+              const double h0 = crowd.times[f1] - crowd.times[f0], h1 = crowd.times[f2] - crowd.times[f1];
+              const double mean = 0.5 * (h0 + h1);
+              const Eigen::Vector2d lhs = (h1 * result(f0, ea) - (h0 + h1) * result(f1, ea) + h0 * result(f2, ea)) / mean;
+              record((lhs - k.acceleration * h0 * h1).norm());
+            } else if constexpr (std::is_same_v<T, Velocity>) {
+              const std::size_t f = clip.absolute(k.frame);
+              const std::size_t f0 = f < clip.last ? f : f - 1, f1 = f0 + 1;
+              const double dt = crowd.times[f1] - crowd.times[f0];
+              record((result(f1, ea) - result(f0, ea) - k.velocity * dt).norm());
+            } else {
+              const auto [from, to] = clip.range(k.first_frame, k.last_frame);
+              for (std::size_t f = from; f <= to && from <= to; ++f) {
+                if constexpr (std::is_same_v<T, RelativePosition>) {
+                  const auto [cb, eb] = agent(k.other);
+                  const Eigen::Vector2d offset = k.offset.value_or(original(f, ca) - original(f, cb));
+                  record((result(f, ea) - result(f, eb) - offset).norm());
+                } else {
+                  const Eigen::Vector2d normal = Eigen::Vector2d(-k.direction.y(), k.direction.x()).normalized();
+                  record(std::abs(normal.dot(result(f, ea) - k.point)));
+                }
               }
             }
           }

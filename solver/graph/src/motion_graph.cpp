@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace throng {
 namespace {
@@ -21,6 +23,63 @@ struct ResolvedEdit {
   std::size_t last_sample = 0;  // inclusive
   bool add = true;
 };
+
+// A split resolved to graph agents (side[j] = 1 for the split's agents) and the samples it covers.
+struct ResolvedSplit {
+  std::vector<char> side;
+  std::size_t first_sample = 0;
+  std::size_t last_sample = 0;  // inclusive
+};
+
+std::string frames_text(std::size_t first, std::size_t last) {
+  return "[" + std::to_string(first) + ", " +
+         (last == std::numeric_limits<std::size_t>::max() ? std::string("end") : std::to_string(last)) + "]";
+}
+
+// The samples [first, last] of the clip whose source frames lie in [first_frame, last_frame]; a ConfigError naming
+// `where` when there is none (or the range is reversed).
+std::pair<std::size_t, std::size_t> samples_of_range(const Clip& clip, std::size_t first_frame, std::size_t last_frame,
+                                                     const std::string& where) {
+  if (first_frame > last_frame) {
+    throw ConfigError(where + ": first_frame " + std::to_string(first_frame) + " is after last_frame " + std::to_string(last_frame));
+  }
+  const auto first = std::lower_bound(clip.frames.begin(), clip.frames.end(), first_frame);
+  const auto past = std::upper_bound(clip.frames.begin(), clip.frames.end(), last_frame);
+  if (first >= past) {
+    throw ConfigError(where + ": frames " + frames_text(first_frame, last_frame) + " hold no sample of the clip [" +
+                      std::to_string(clip.first_frame) + ", " + std::to_string(clip.last_frame) + "]");
+  }
+  return {static_cast<std::size_t>(first - clip.frames.begin()), static_cast<std::size_t>(past - clip.frames.begin()) - 1};
+}
+
+std::vector<ResolvedSplit> resolve_splits(const Clip& clip, const FormationOptions& options) {
+  std::vector<ResolvedSplit> out;
+  for (std::size_t k = 0; k < options.splits.size(); ++k) {
+    const FormationSplit& split = options.splits[k];
+    const std::string where = "formation.splits[" + std::to_string(k) + "]";
+    if (split.agents.empty()) throw ConfigError(where + ".agents: no agent given: a split needs the agents of one side");
+    ResolvedSplit r;
+    r.side.assign(clip.agent_count(), 0);
+    for (std::size_t i = 0; i < split.agents.size(); ++i) {
+      const std::int64_t id = split.agents[i];
+      const long j = clip.agent_of_id(id);
+      const std::string entry = where + ".agents[" + std::to_string(i) + "]";
+      if (j < 0) {
+        throw ConfigError(entry + ": agent " + std::to_string(id) +
+                          " is not in the clip (absent from the crowd, not selected, or absent somewhere in the clip)");
+      }
+      if (r.side[static_cast<std::size_t>(j)]) throw ConfigError(entry + ": agent " + std::to_string(id) + " is named twice");
+      r.side[static_cast<std::size_t>(j)] = 1;
+    }
+    if (split.agents.size() == clip.agent_count()) {
+      throw ConfigError(where + ".agents: all " + std::to_string(clip.agent_count()) +
+                        " agents of the clip are on one side: nothing is left to split them from");
+    }
+    std::tie(r.first_sample, r.last_sample) = samples_of_range(clip, split.first_frame, split.last_frame, where);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
 
 Edge ordered(int a, int b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 
@@ -47,27 +106,15 @@ std::vector<ResolvedEdit> resolve_edits(const Clip& clip, const FormationOptions
       }
     }
     if (a == b) throw ConfigError(where + ": an edge needs two different agents, got " + std::to_string(e.agent_a) + " twice");
-    if (e.first_frame > e.last_frame) {
-      throw ConfigError(where + ": first_frame " + std::to_string(e.first_frame) + " is after last_frame " +
-                        std::to_string(e.last_frame));
-    }
-    const auto first = std::lower_bound(clip.frames.begin(), clip.frames.end(), e.first_frame);
-    const auto past = std::upper_bound(clip.frames.begin(), clip.frames.end(), e.last_frame);
-    if (first >= past) {
-      throw ConfigError(where + ": frames [" + std::to_string(e.first_frame) + ", " +
-                        (e.last_frame == std::numeric_limits<std::size_t>::max() ? std::string("end") : std::to_string(e.last_frame)) +
-                        "] hold no sample of the clip [" + std::to_string(clip.first_frame) + ", " +
-                        std::to_string(clip.last_frame) + "]");
-    }
-    out.push_back({static_cast<int>(a), static_cast<int>(b), static_cast<std::size_t>(first - clip.frames.begin()),
-                   static_cast<std::size_t>(past - clip.frames.begin()) - 1, e.add});
+    const auto [first, last] = samples_of_range(clip, e.first_frame, e.last_frame, where);
+    out.push_back({static_cast<int>(a), static_cast<int>(b), first, last, e.add});
   }
   return out;
 }
 
 // Formation edges and triangles of one sample.
 void build_sample(const Clip& clip, std::size_t sample, double max_length, const std::vector<ResolvedEdit>& edits,
-                  std::vector<Edge>& edges, std::vector<Triangle>& triangles) {
+                  const std::vector<ResolvedSplit>& splits, std::vector<Edge>& edges, std::vector<Triangle>& triangles) {
   const auto n = static_cast<Eigen::Index>(clip.agent_count());
   const auto points = clip.positions.middleRows(clip.vertex(sample, 0), n);
   const Triangulation dt = delaunay_2d(points);
@@ -92,6 +139,14 @@ void build_sample(const Clip& clip, std::size_t sample, double max_length, const
       edges.erase(at);
       added.erase(std::remove(added.begin(), added.end(), e), added.end());
     }
+  }
+  for (const ResolvedSplit& split : splits) {
+    if (sample < split.first_sample || sample > split.last_sample) continue;
+    auto crosses = [&](const Edge& e) {
+      return split.side[static_cast<std::size_t>(e[0])] != split.side[static_cast<std::size_t>(e[1])];
+    };
+    edges.erase(std::remove_if(edges.begin(), edges.end(), crosses), edges.end());
+    added.erase(std::remove_if(added.begin(), added.end(), crosses), added.end());
   }
   auto has = [&](int a, int b) { return std::binary_search(edges.begin(), edges.end(), ordered(a, b)); };
 
@@ -129,6 +184,7 @@ MotionGraph build_motion_graph(Clip clip, const FormationOptions& options) {
                       ": expected a length ≥ 0 in metres (0 keeps every edge)");
   }
   const std::vector<ResolvedEdit> edits = resolve_edits(clip, options);
+  const std::vector<ResolvedSplit> splits = resolve_splits(clip, options);
   MotionGraph graph;
   graph.clip = std::move(clip);
   const std::size_t samples = graph.clip.sample_count();
@@ -136,7 +192,7 @@ MotionGraph build_motion_graph(Clip clip, const FormationOptions& options) {
   graph.triangles.resize(samples);
   parallel_for(samples, 4, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      build_sample(graph.clip, i, options.max_edge_length, edits, graph.edges[i], graph.triangles[i]);
+      build_sample(graph.clip, i, options.max_edge_length, edits, splits, graph.edges[i], graph.triangles[i]);
     }
   });
   return graph;

@@ -17,6 +17,10 @@
 //     edits:                          # applied in order, at the samples in their frame range
 //       - {add: [12, 17], frames: [0, 200]}   # add the edge between agents 12 and 17 (frames: default whole clip)
 //       - {remove: [3, 4]}                    # remove the edge between agents 3 and 4
+//     splits:                         # branch splits, after the edits: every formation edge between these agents
+//                                     # and the rest of the clip is cut at the samples of the range (the paper's
+//                                     # battlefield branches); each agent keeps its own trajectory's features
+//       - {agents: [1, 3, 5], frames: [600, end]}  # frames: default the whole clip (indices, last may be end)
 //   weights: {alpha: 1, beta: 1, alpha_prime: 1, beta_prime: 1}   # α, β of Eq. 4 and α′, β′ of Eq. 9
 //   scale_compensation: true          # step 2 (Eq. 8–10); false keeps step 1's result
 //   features: {min_length: 0.05, degenerate_ratio: 0.001}        # see throng/graph/features.h
@@ -56,11 +60,23 @@
 //     - {type: relative_position, agent: 12, other: 17, frames: [100, 120], offset: [1, 0]}  # default offset: original
 //     - {type: velocity, agent: 12, frame: 50, velocity: [1.2, 0]}    # (p(f+1) − p(f)) / Δt
 //     - {type: on_line, agent: 12, frames: [0, 60], point: [0, 0], direction: [1, 0]}
+//     - {type: acceleration, agent: 12, frame: 50, acceleration: [0, 0]}   # m/s², default [0, 0]: the
+//                                     # three-point second difference over the frame times at f−1, f, f+1 (at the
+//                                     # clip's first or last frame the three nearest: one-sided)
+//     - {type: sum, agents: [1, 2, 3], weights: [0.5, 0.25, 0.25], frames: [0, 60], value: [10, 2]}
+//                                     # Σ w_k p_k = value at every frame of the range; weights default 1/n (the
+//                                     # centroid), value default the original's sum at each frame
+//     - type: row                     # a user's own row: Σ coefficient · p(agent, frame)[axis] = value
+//       terms:
+//         - {agent: 12, frame: 40, axis: x, coefficient: 1}               # coefficient default 1
+//         - {agent: 17, frame: 42, axis: y, coefficient: -2}
+//       value: 1.5
 //
 // Everything here is job data: a malformed entry is a ConfigError (exit 2) naming the line. Entries that do not
 // fit the input crowd (an unknown agent, an agent absent from part of the clip, a frame out of range) are
-// ConfigErrors from the editor naming pins[k], drags[k], constraints[k] or formation.edits[k]; contradictory
-// constraints and a singular system are NumericalErrors (exit 5). See throng/edit/edit.h for the method.
+// ConfigErrors from the editor naming pins[k], drags[k], constraints[k] (constraints[k].terms[j].agent, ...),
+// formation.edits[k] or formation.splits[k]; contradictory constraints and a singular system are NumericalErrors
+// (exit 5). See throng/edit/edit.h for the method.
 #pragma once
 
 #include <throng/edit/runner.h>

@@ -18,10 +18,13 @@
 //  * A handle (pin or drag) sets a vertex; two handles on one vertex must agree (else: contradictory). Every
 //    frame of a drag's range becomes a sample, so the output holds the rigid map at every frame it covers, not
 //    only at the regular samples (the extra vertices are handles: eliminated, they add no unknowns).
-//  * General constraints: relative position of two agents (p_a − p_b = offset, default the original offset),
-//    velocity at a frame ((p(f+1) − p(f)) / (t(f+1) − t(f)); at the clip's last frame the backward difference),
-//    and motion along a line (the normal component of p − point is 0). Every frame they cover becomes a sample,
-//    so the output meets them at every frame (a long constraint range adds samples for every agent: unknowns).
+//  * General constraints (the paper's "any linear constraint", §4): relative position of two agents (p_a − p_b =
+//    offset, default the original offset), velocity at a frame ((p(f+1) − p(f)) / (t(f+1) − t(f)); at the clip's
+//    last frame the backward difference), motion along a line (the normal component of p − point is 0),
+//    acceleration at a frame (the three-point second difference over the actual frame times), a weighted sum
+//    over agents (a centroid held on a path) and a user's own scalar row over any agents, frames and axes. Every
+//    frame they cover becomes a sample, so the output meets them at every frame (a long constraint range adds
+//    samples for every agent: unknowns).
 //  * Every connected part of the graph (through features) needs two handled vertices at distinct original
 //    places: otherwise its position, rotation and scale are free and the system is singular (NumericalError
 //    naming the agents). Constraints do not count toward this.
@@ -134,7 +137,48 @@ struct OnLine {
   Eigen::Vector2d direction{1, 0};  ///< any non-zero length
 };
 
-using Constraint = std::variant<RelativePosition, Velocity, OnLine>;
+/// The agent's acceleration at `frame` (m/s²): the second derivative of the parabola through its positions at
+/// three consecutive frames t0 < t1 < t2 (h0 = t1 − t0, h1 = t2 − t1; the three-point formula for unequal spacing),
+///   a = 2 [(p2 − p1)/h1 − (p1 − p0)/h0] / (h0 + h1),   equal spacing: (p(f+1) − 2p(f) + p(f−1)) / Δt².
+/// The frames are f − 1, f, f + 1; at the clip's first frame f, f + 1, f + 2 and at its last f − 2, f − 1, f
+/// (one-sided: the same parabola's acceleration, first order accurate there). A clip of fewer than three frames
+/// is a ConfigError. Its rows (x and y) are that formula times h0 h1 (in metres, like the others):
+///   (h1 p0 − (h0 + h1) p1 + h0 p2) / h̄ = a h0 h1,  h̄ = (h0 + h1)/2;  equal spacing: p0 − 2p1 + p2 = a Δt²,
+/// and the output residual is measured the same way.
+struct Acceleration {
+  std::int64_t agent = 0;
+  Frame frame = 0;
+  Eigen::Vector2d acceleration{0, 0};
+};
+
+/// Σ_k weights[k] · p(agents[k]) = value at every frame of the range: with the default weights 1/n, the agents'
+/// centroid is held at `value` (default: the original's weighted sum at each frame, i.e. the centroid keeps its
+/// path while the agents move around it). Agents distinct, weights finite and not all zero.
+struct Sum {
+  std::vector<std::int64_t> agents;         ///< at least one, each once
+  std::vector<double> weights;              ///< one per agent; empty: 1/n each
+  Frame first_frame = 0;
+  Frame last_frame = -1;
+  std::optional<Eigen::Vector2d> value;     ///< metres (for weights summing to 1); default: the original's sum
+};
+
+/// One term of a Row: coefficient · (the x or y coordinate of `agent` at `frame`).
+struct RowTerm {
+  std::int64_t agent = 0;
+  Frame frame = 0;
+  int axis = 0;  ///< 0: x, 1: y
+  double coefficient = 1.0;
+};
+
+/// A user's own linear constraint, one scalar row: Σ_j terms[j].coefficient · p(agent_j, frame_j)[axis_j] = value.
+/// Every term's frame becomes a sample. Terms distinct in (agent, frame, axis), coefficients finite and not all
+/// zero. Its residual is measured as the distance to the row's hyperplane, |Σ c x − value| / ‖c‖ (metres).
+struct Row {
+  std::vector<RowTerm> terms;
+  double value = 0.0;
+};
+
+using Constraint = std::variant<RelativePosition, Velocity, OnLine, Acceleration, Sum, Row>;
 
 /// What the user asks for. Messages name entries as pins[k], drags[k], constraints[k].
 struct Request {
@@ -161,7 +205,8 @@ struct Report {
   std::string fallback;          ///< non-empty when the backend fell back, saying why
   double max_constraint_residual = 0;  ///< metres, general constraints at the samples, over both steps, last deform()
   /// metres: the largest violation of a handle or constraint at any output frame it covers (velocity: times
-  /// Δt), measured on the resampled output by max_request_residual(); set by edit_group_motion and the program
+  /// Δt; acceleration: times h0 h1; a row: over its coefficients' norm), measured on the resampled output by
+  /// max_request_residual(); set by edit_group_motion and the program
   double max_output_residual = 0;
   int factorizations = 0;              ///< numeric factorisations so far, both steps (a drag adds none)
   int analyses = 0;                    ///< symbolic analyses computed so far, both steps (step 2 reuses step 1's)

@@ -6,9 +6,10 @@
 // frames whose acceleration exceeds max(max_acceleration, the input's own there) smoothed.
 //
 // What the edit asked holds on every frame it covers, where the guard does not warp: the frames of every pin,
-// drag range, velocity constraint (both frames of its difference) and relative-position or on-line range are
-// pinned (the smoothing keeps every agent's position there, GuardSource::pinned_times; a pinned frame is held for
-// every agent, the guard pins frames, not vertices). Where the guard warps, the constraints hold at the warped
+// drag range, velocity constraint (both frames of its difference), acceleration constraint (its three frames),
+// row (every frame a term names) and relative-position, on-line or sum range are pinned (the smoothing keeps
+// every agent's position there, GuardSource::pinned_times; a pinned frame is held for every agent, the guard
+// pins frames, not vertices). Where the guard warps, the constraints hold at the warped
 // times of their frames (the warp re-times the positions, the frame nearest each warped time is held), not at the
 // output's frames of the same index, and a velocity constraint is slowed down with the rest.
 #pragma once
@@ -23,8 +24,9 @@
 namespace throng::edit {
 
 /// The input frames (sorted, unique) that `request` constrains within the clip [first_frame, last_frame]: pin
-/// frames, every frame of a drag's range, a velocity's two frames, every frame of a relative-position or on-line
-/// range (negative frames count back from last_frame, ranges are clamped to the clip, as the editor reads them).
+/// frames, every frame of a drag's range, a velocity's two frames, an acceleration's three (f − 1, f, f + 1, or
+/// the three nearest at the clip's ends), every frame a row's terms name, every frame of a relative-position,
+/// on-line or sum range (negative frames count back from last_frame, ranges are clamped to the clip, as the editor reads them).
 [[nodiscard]] std::vector<std::size_t> constrained_frames(const Request& request, std::size_t first_frame,
                                                           std::size_t last_frame);
 
