@@ -17,12 +17,20 @@
 // the direct factor of 3,000 agents does not fit 24 GB), its CG iterations and their error estimate.
 // PETSc on 2 ranks:  mpiexec -np 2 bench_edit --benchmark_filter=petsc ...  (iteration counts are fixed so the
 // ranks' collective solves line up; only rank 0 prints).
+// Sessions (`throng edit --session`, issue 16: each drag after the first ≤ 0.1 s at 300 agents, ≤ 0.03 s on the
+// battlefield): session/<scene>/<method> times edit::Session::edit(), the whole in-process answer but for
+// writing a file (the edit on the kept factorisation, resampling, the clip put back into the whole crowd, the
+// guard, the request measured on the written frames), for drags after the first of the same handles with new
+// offsets; `local` is the direct method on local edits (local.parts auto). session/<scene>/<method>/preview times
+// edit::Session::preview(), the answer a plugin draws during a drag: the same solve on the kept editor, its
+// sample positions copied out and their largest displacement measured, nothing after it (no file written).
 #include "../../tests/edit/shipped_scenes.h"
 #include "../../tests/graph/synthetic_crowd.h"
 #include "../common/heap.h"
 
 #include <throng/core/errors.h>
 #include <throng/edit/edit.h>
+#include <throng/edit/session.h>
 #include <throng/linalg/mpi.h>
 #include <throng/process/process.h>
 
@@ -208,6 +216,73 @@ void battlefield(benchmark::State& state, const std::string& method) {
   }
 }
 
+// "direct" and "iterative" as set_method; "local": the direct method on local edits of parts of about
+// local.vertices_per_part vertices (local.parts auto).
+void set_session_method(edit::Options& options, const std::string& method) {
+  set_method(options, method == "local" ? "direct" : method);
+  if (method == "local") options.local.parts = edit::LocalOptions::by_size;
+}
+
+// Drags after the first in one session (edit::Session): the first request builds the editor (untimed), every
+// timed one moves the dragged handles somewhere new and is answered in full (edit()) or as a preview (preview()).
+// `move(request, step)` makes the step-th drag.
+template <class Move>
+void session_drags(benchmark::State& state, const CrowdMotion& motion, edit::Job job, bool preview, Move move) {
+  const Crowd input{motion, {}, {}};
+  try {
+    edit::Session session(input, job);
+    (void)session.edit(job.request);  // built
+    int reused = 0, step = 0;
+    bool warped = false;
+    double displacement = 0;
+    for (auto _ : state) {
+      move(job.request, ++step);
+      if (preview) {
+        const edit::Preview answer = session.preview(job.request);
+        displacement = answer.samples.max_displacement_m;
+        benchmark::DoNotOptimize(answer.samples.positions.data());
+      } else {
+        const edit::Run run = session.edit(job.request);
+        warped = warped || run.guard.warped;
+        benchmark::DoNotOptimize(run.crowd.motion.positions.data());
+      }
+      reused += session.last_use() == edit::EditorUse::reused ? 1 : 0;
+    }
+    state.counters["reused"] = static_cast<double>(reused);  // = iterations: no drag refactorised or rebuilt
+    state.counters["bit_identical"] = session.bit_identical() ? 1 : 0;
+    if (preview) {
+      state.counters["max_displacement_m"] = displacement;  // the last drag's: the samples moved
+    } else {
+      state.counters["guard_warped"] = warped ? 1 : 0;
+    }
+  } catch (const Error& e) {
+    state.SkipWithError(e.what());
+  }
+}
+
+void session_300(benchmark::State& state, const std::string& method, bool guard, bool preview) {
+  const Scene s = scene(300, "direct");
+  edit::Job job;
+  job.guard.enabled = guard;
+  job.options = s.options;
+  set_session_method(job.options, method);
+  job.request = s.request;
+  session_drags(state, s.crowd, job, preview, [](edit::Request& r, int step) {
+    r.drags[1].offset = Eigen::Vector2d(3.0 + 0.25 * step, 4.0 - 0.1 * step);
+  });
+}
+
+void session_battlefield(benchmark::State& state, const std::string& method, bool guard, bool preview) {
+  const test::ShippedEdit shipped = test::battlefield(THRONG_SOURCE_DIR);
+  edit::Job job = shipped.job;
+  job.guard.enabled = guard;
+  set_session_method(job.options, method);
+  const Eigen::Vector2d offset = job.request.drags[1].offset;
+  session_drags(state, shipped.crowd, job, preview, [offset](edit::Request& r, int step) {
+    r.drags[1].offset = offset + Eigen::Vector2d(0.5 * step, -0.3 * step);
+  });
+}
+
 // Registered per size with fixed iteration counts (the same on every rank under mpiexec, where the PETSc
 // solves are collective): small cases several times, the big ones once per repetition.
 void register_benchmarks() {
@@ -231,6 +306,36 @@ void register_benchmarks() {
   }
   for (const std::string method : {"direct", "iterative"}) {
     benchmark::RegisterBenchmark(("battlefield/" + method).c_str(), battlefield, method)
+        ->Iterations(10)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  // guard:on is the job's default (the written crowd is guarded, guard.h); guard:off the paper's edit alone
+  // (--set guard.enabled=false), what an interactive preview needs.
+  for (const std::string method : {"direct", "iterative", "local"}) {
+    for (const bool guard : {true, false}) {
+      const std::string g = guard ? "/guard:on" : "/guard:off";
+      benchmark::RegisterBenchmark(("session/agents:300/" + method + g).c_str(), session_300, method, guard, false)
+          ->Iterations(10)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+      benchmark::RegisterBenchmark(("session/battlefield/" + method + g).c_str(), session_battlefield, method, guard,
+                                   false)
+          ->Iterations(10)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+  // Previews (the guard does not run in one): 300 agents per method, the battlefield direct and local.
+  for (const std::string method : {"direct", "iterative", "local"}) {
+    benchmark::RegisterBenchmark(("session/agents:300/" + method + "/preview").c_str(), session_300, method, false,
+                                 true)
+        ->Iterations(10)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+    if (method == "iterative") continue;
+    benchmark::RegisterBenchmark(("session/battlefield/" + method + "/preview").c_str(), session_battlefield, method,
+                                 false, true)
         ->Iterations(10)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();

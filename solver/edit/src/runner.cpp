@@ -3,6 +3,7 @@
 #include <throng/edit/output.h>
 #include <throng/edit/runner.h>
 #include <throng/edit/schema.h>
+#include <throng/edit/session.h>
 #include <throng/timewarp/schema.h>
 
 #include <algorithm>
@@ -38,15 +39,19 @@ void describe(OptionBinder& b, Job& job) {
 
 Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communicator& communicator) {
   const Crowd& input = *inputs.at(0);
+  return finish_edit(input, job, edit_group_motion(input.motion, job.options, job.request, &progress), communicator.size());
+}
+
+Run finish_edit(const Crowd& input, const Job& job, Result result, int ranks) {
   Run out;
   out.clip_only = job.clip_only;
   out.backend = job.options.solver.backend;
-  out.ranks = communicator.size();
+  out.ranks = ranks;
   if (out.ranks > 1 && out.backend != "petsc") {
     out.warnings.push_back(std::to_string(out.ranks) + " ranks with the " + out.backend +
                            " backend: every rank solves the whole problem (--backend petsc shares it)");
   }
-  out.result = edit_group_motion(input.motion, job.options, job.request, &progress);
+  out.result = std::move(result);
   const Result& r = out.result;
   const Report& report = r.report;
   out.clip_agents = r.crowd.agent_count();
