@@ -59,6 +59,17 @@ std::filesystem::path output_path_of(const YAML::Node& step) {
   return ec ? std::filesystem::path(given) : p.lexically_normal();
 }
 
+// A pipeline names its outputs, so the folders they go in are made as the run reaches each step (as a build tool
+// makes its output folders). A single command's -o into a missing folder stays an I/O error (exit 4): there a
+// missing folder is more likely a typo than a plan.
+void make_output_folder(const std::string& output, const std::string& label) {
+  const std::filesystem::path folder = std::filesystem::path(output).parent_path();
+  if (folder.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw_as(ExitCode::io, label + ": cannot make the folder " + folder.string() + " for " + output + ": " + ec.message());
+}
+
 Command* find(const std::vector<Command*>& commands, const std::string& which) {
   for (Command* c : commands) {
     if (c->name() == which && c->name() != "run") return c;
@@ -257,6 +268,7 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
     Command* command = find(commands, step.at("step").as_string());
     const std::string label = "step " + std::to_string(i + 1) + "/" + std::to_string(steps.size()) + " " + command->name();
     checkpoint.starting(i);
+    if (const auto o = step.find("output"); o && writer) make_output_folder(o->as_string(), label);
     std::optional<StepResult> result;
     std::vector<const CrowdFile*> inputs;
     {

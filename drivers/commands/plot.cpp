@@ -1,5 +1,6 @@
-// throng plot CROWD.h5 -o OUT.svg|png: trajectories, obstacles and agents at chosen frames, coloured by group,
-// with a scale bar; --overlay draws another crowd underneath (before/after an edit). A file written by
+// throng plot CROWD.h5 -o OUT.svg|png|gif|mp4: trajectories, obstacles and agents at chosen frames, coloured by
+// group, with a scale bar, or an animated preview of the agents moving (io/src/plot_animation.h); --overlay draws
+// another crowd underneath (before/after an edit). A file written by
 // `throng tile` is drawn as its tiling (io/tiling_plot.h: patches coloured by type, connections marked) unless
 // --no-tiling. The options' schema is io/data_options.h (PlotJob).
 #include "../option_flags.h"
@@ -49,11 +50,11 @@ void plot(const std::filesystem::path& output, const std::vector<const CrowdFile
 class PlotCommand final : public Command {
  public:
   std::string name() const override { return "plot"; }
-  std::string summary() const override { return "Draw a crowd file as SVG or PNG: trajectories, obstacles, agents at chosen frames"; }
+  std::string summary() const override { return "Draw a crowd file as SVG or PNG (trajectories, obstacles, agents at chosen frames) or animate it as GIF or MP4"; }
 
   void setup(CLI::App& app) override {
     app.add_option("crowd", input_, "Crowd file (.h5)")->required();
-    app.add_option("-o,--output", output_, "Picture to write: .svg, or .png (through rsvg-convert)")->required();
+    app.add_option("-o,--output", output_, "Picture to write: .svg, .png (through rsvg-convert), or an animated preview .gif or .mp4 (through ffmpeg)")->required();
     app.add_option("--overlay", overlay_, "Another crowd file drawn underneath in grey (for example the input of an edit)");
     flags_.add(app, static_cast<void (*)(OptionBinder&, PlotJob&)>(describe));
   }

@@ -68,6 +68,21 @@ void describe(OptionBinder& b, PlotJob& job) {
            {"top", "front", "side"});
   b.field({.key = "tiling", .flag = "!--no-tiling", .help = "a file written by throng tile is drawn as its patches"},
           job.tiling);
+  b.section("preview", [&](OptionBinder& s) {
+    PlotAnimation& a = job.picture.animation;
+    s.field({.key = "fps", .unit = "Hz", .range = Range::closed(1, 60), .flag = "--preview-fps",
+             .help = "animated preview (.gif, .mp4): frames per second"},
+            a.fps);
+    s.field({.key = "width", .unit = "px", .range = Range::closed(200, 4000), .flag = "--preview-width",
+             .help = "animated preview width (rounded to even)"},
+            a.width_px);
+    s.field({.key = "max_duration", .unit = "s", .range = Range::positive(), .flag = "--max-duration",
+             .help = "longest animated preview without --speed: longer crowds are sped up to fit"},
+            a.max_duration_s);
+    s.field({.key = "speed", .range = Range::positive(), .flag = "--speed",
+             .help = "crowd seconds per preview second (default: real time, or sped up to fit max_duration)"},
+            a.speed);
+  });
 }
 
 void describe(OptionBinder& b, CheckTilingJob& job) {

@@ -2,6 +2,9 @@
 #include <throng/io/atomic_output.h>
 #include <throng/io/plot.h>
 
+#include "plot_animation.h"
+#include "plot_svg.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cerrno>
@@ -55,13 +58,6 @@ std::string escape(const std::string& s) {
   }
   return out;
 }
-
-// World (metres, y up) to picture (pixels, y down).
-struct View {
-  double x0, y1, scale, margin, top;
-  [[nodiscard]] double px(double x) const { return margin + (x - x0) * scale; }
-  [[nodiscard]] double py(double y) const { return top + (y1 - y) * scale; }
-};
 
 // A "nice" length (1, 2 or 5 × 10^k) close to `target`.
 double nice_length(double target) {
@@ -190,13 +186,13 @@ void draw_legend_entries(Svg& svg, const std::vector<LegendFlow::Placed>& entrie
   }
 }
 
-std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions& options) {
+}  // namespace
+
+PlotLayout plot_layout(const std::vector<PlotLayer>& layers, const PlotOptions& options) {
   // Extent of everything drawn.
   Eigen::AlignedBox2d box;
-  std::size_t total_agents = 0;
   for (const PlotLayer& layer : layers) {
     const CrowdMotion& m = layer.file->motion;
-    total_agents += m.agent_count();
     for (std::size_t i = 0; i + 2 < m.positions.size(); i += 3) {
       if (std::isfinite(m.positions[i])) box.extend(Eigen::Vector2d(m.positions[i], m.positions[i + 1]));
     }
@@ -236,7 +232,16 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   const double top = margin + 20.0 * static_cast<double>(legend_lines);
   const double scale = (width - 2 * margin) / size.x();
   const double height = size.y() * scale + top + margin + 30;
-  const View v{box.min().x(), box.max().y(), scale, margin, top};
+  return {.view = {box.min().x(), box.max().y(), scale, margin, top}, .width = width, .height = height, .size = size};
+}
+
+std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions& options, const PlotLayout& layout) {
+  const View& v = layout.view;
+  const double width = layout.width, height = layout.height, scale = v.scale, margin = v.margin;
+  const Eigen::Vector2d size = layout.size;
+  const LegendFlow legend = flow_legend(layers, width);
+  std::size_t total_agents = 0;
+  for (const PlotLayer& layer : layers) total_agents += layer.file->motion.agent_count();
 
   Svg svg;
   svg.raw("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"");
@@ -458,8 +463,6 @@ std::string svg_document(const std::vector<PlotLayer>& layers, const PlotOptions
   return svg.text();
 }
 
-}  // namespace
-
 std::string group_colour(std::int64_t index) {
   static const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
                                   "#e377c2", "#17becf", "#bcbd22", "#393b79", "#637939", "#7f7f7f"};
@@ -490,10 +493,14 @@ int run_program(const std::vector<std::string>& argv, int input_fd, int output_f
 void write_plot(const std::filesystem::path& path, const std::vector<PlotLayer>& layers, const PlotOptions& options) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (extension != ".svg" && extension != ".png") {
-    throw ConfigError(path.string() + ": unknown picture format '" + extension + "', expected .svg or .png");
+  if (extension != ".svg" && extension != ".png" && extension != ".gif" && extension != ".mp4") {
+    throw ConfigError(path.string() + ": unknown picture format '" + extension + "', expected .svg, .png, .gif or .mp4");
   }
   if (layers.empty()) throw ConfigError("nothing to plot");
+  if (extension == ".gif" || extension == ".mp4") {
+    write_animation(path, layers, options);
+    return;
+  }
   for (long f : options.frames) {
     bool inside = false;
     for (const auto& layer : layers) {
@@ -502,7 +509,7 @@ void write_plot(const std::filesystem::path& path, const std::vector<PlotLayer>&
     }
     if (!inside) throw ConfigError("frame " + std::to_string(f) + " is outside every plotted crowd");
   }
-  const std::string svg = svg_document(layers, options);
+  const std::string svg = svg_document(layers, options, plot_layout(layers, options));
   AtomicOutput output(path);
   if (extension == ".svg") {
     output.write(svg);

@@ -61,7 +61,7 @@ TEST_CASE("PNG goes through rsvg-convert and bad extensions and frames are confi
   in.read(magic, 4);
   CHECK(std::string(magic + 1, 3) == "PNG");
   CHECK_FALSE(std::filesystem::exists(dir / "p.svg"));
-  CHECK_THROWS_AS(write_plot(dir / "p.gif", {{.file = &f, .label = "x"}}, {}), ConfigError);
+  CHECK_THROWS_AS(write_plot(dir / "p.bmp", {{.file = &f, .label = "x"}}, {}), ConfigError);
   PlotOptions o;
   o.frames = {99};
   CHECK_THROWS_AS(write_plot(dir / "q.svg", {{.file = &f, .label = "x"}}, o), ConfigError);

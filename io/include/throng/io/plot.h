@@ -1,6 +1,7 @@
 // Pictures of crowds: SVG (and PNG through Debian's rsvg-convert) of trajectories, obstacles and agents at chosen
 // frames, coloured by group, with a scale bar, a title and a legend — a picture a person looks at instead of
-// reading numbers. Several crowds can be drawn over each other (before/after an edit).
+// reading numbers. Several crowds can be drawn over each other (before/after an edit). Animated previews (GIF,
+// MP4 through Debian's ffmpeg): the agents as discs moving over their faint trajectories, with a clock.
 #pragma once
 
 #include <throng/io/crowd_file.h>
@@ -61,6 +62,16 @@ struct PlotLayer {
   AgentColour agent_colour;            ///< empty: colour by layer or species
 };
 
+/// An animated preview (.gif, .mp4): frames every `speed / fps` seconds of crowd time from the first frame of the
+/// crowds to the last, shown at `fps`. Without `speed` the crowd plays in real time when that fits in
+/// `max_duration_s`, and is sped up to fill exactly `max_duration_s` otherwise.
+struct PlotAnimation {
+  double fps = 10;                     ///< preview frames per second
+  double max_duration_s = 10;          ///< longest preview when `speed` is not given
+  std::optional<double> speed;         ///< crowd seconds per preview second (absent: real time or fitted)
+  double width_px = 480;               ///< preview width (rounded to an even number of pixels)
+};
+
 struct PlotOptions {
   /// Frames at which agents are drawn as discs of their radius; negative counts from the end (−1 = last).
   std::vector<long> frames{0, -1};
@@ -70,11 +81,14 @@ struct PlotOptions {
   bool trajectories = true;
   bool obstacles = true;
   std::string title;                   ///< empty: none
+  PlotAnimation animation;             ///< .gif and .mp4 only (`frames` and `width_px` are the still picture's)
 };
 
 /// Writes the picture of `layers` (drawn in order, the first underneath) to `path`; the format follows the
-/// extension: .svg, or .png (rendered by rsvg-convert from librsvg2-bin; IoError if it is missing). Written
-/// atomically. ConfigError for an unknown extension or a frame outside every layer.
+/// extension: .svg, or .png (rendered by rsvg-convert from librsvg2-bin; IoError if it is missing), or an
+/// animated preview .gif or .mp4 (plot_animation.h: rsvg-convert and ffmpeg; IoError naming the Debian package
+/// if either is missing). Written atomically. ConfigError for an unknown extension, or for a still picture a
+/// frame outside every layer.
 void write_plot(const std::filesystem::path& path, const std::vector<PlotLayer>& layers, const PlotOptions& options);
 
 /// A colour for a species or group index (a fixed palette of 12 distinguishable colours, cycled).
