@@ -46,6 +46,26 @@ Json head_and_tail(double dx, double dy, double rotation) {
                                      Json{{"frames", {-2, "end"}}, {"offset", {dx, dy}}, {"rotation", rotation}}})}};
 }
 
+// What a refused line's answer must say: its id echoed, the exit code a one-shot edit would give, and a part of
+// the message.
+struct Refusal {
+  Json id;
+  int exit_code;
+  const char* message;
+};
+
+// Checks that answers[k] is the refusal expected[k], for each k of `expected`.
+void check_refusals(const std::vector<Json>& answers, const std::vector<Refusal>& expected) {
+  REQUIRE(answers.size() >= expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    INFO("line " << k + 1 << ": " << answers[k].dump());
+    CHECK(answers[k]["ok"] == false);
+    CHECK(answers[k]["id"] == expected[k].id);
+    CHECK(answers[k]["exit_code"] == expected[k].exit_code);
+    CHECK_THAT(answers[k]["error"].get<std::string>(), Contains(expected[k].message));
+  }
+}
+
 // Runs a session over `lines`; returns the answer lines (stdout) and the exit status.
 std::vector<Json> session(const std::filesystem::path& dir, const std::filesystem::path& input,
                           const std::filesystem::path& job, const std::vector<std::string>& lines, int* status,
@@ -247,12 +267,7 @@ TEST_CASE("edit --session answers bad requests with the one-shot's exit code and
   const std::vector<Json> answers = session(dir, input, job, lines, &status);
   REQUIRE(status == 0);  // end of input ends the session
   REQUIRE(answers.size() == lines.size());
-  struct Expected {
-    Json id;
-    int exit_code;
-    const char* message;
-  };
-  const std::vector<Expected> expected = {{nullptr, 2, "request line 1: not JSON"},
+  const std::vector<Refusal> expected = {{nullptr, 2, "request line 1: not JSON"},
                                           {nullptr, 2, "expected a JSON object, found array"},
                                           {"key", 2, "unknown key 'weights'"},
                                           {"command", 2, "expected \"edit\""},
@@ -260,13 +275,7 @@ TEST_CASE("edit --session answers bad requests with the one-shot's exit code and
                                           {"agent", 2, "drags[1]"},
                                           {"singular", 5, "singular"},
                                           {"folder", 4, "missing"}};
-  for (std::size_t k = 0; k < expected.size(); ++k) {
-    INFO("line " << k + 1 << ": " << answers[k].dump());
-    CHECK(answers[k]["ok"] == false);
-    CHECK(answers[k]["id"] == expected[k].id);
-    CHECK(answers[k]["exit_code"] == expected[k].exit_code);
-    CHECK_THAT(answers[k]["error"].get<std::string>(), Contains(expected[k].message));
-  }
+  check_refusals(answers, expected);
   CHECK(answers.back()["ok"] == true);
   CHECK(answers.back()["id"] == "fine");
   CHECK(answers.back()["editor"] == "built");  // the singular request's editor was not kept
@@ -483,25 +492,14 @@ TEST_CASE("edit --session refuses bad preview requests with exit codes and carri
   const std::vector<Json> answers = session(dir, input, job, lines, &status);
   REQUIRE(status == 0);
   REQUIRE(answers.size() == lines.size());
-  struct Expected {
-    const char* id;
-    int exit_code;
-    const char* message;
-  };
-  const std::vector<Expected> expected = {{"output", 2, "a preview writes no crowd"},
+  const std::vector<Refusal> expected = {{"output", 2, "a preview writes no crowd"},
                                           {"word", 2, "expected \"full\""},
                                           {"empty", 2, "samples_output \"\""},
                                           {"same", 2, "name the same file"},
                                           {"folder", 4, "missing"},
                                           {"input", 2, "in.h5"},
                                           {"prepare", 2, "a prepare command gives no answer"}};
-  for (std::size_t k = 0; k < expected.size(); ++k) {
-    INFO("line " << k + 1 << ": " << answers[k].dump());
-    CHECK(answers[k]["ok"] == false);
-    CHECK(answers[k]["id"] == expected[k].id);
-    CHECK(answers[k]["exit_code"] == expected[k].exit_code);
-    CHECK_THAT(answers[k]["error"].get<std::string>(), Contains(expected[k].message));
-  }
+  check_refusals(answers, expected);
   CHECK(answers.back()["ok"] == true);
   CHECK(answers.back()["answer"] == "preview");
   CHECK(answers.back()["editor"] == "reused");  // refused lines leave the prepared editor
