@@ -62,12 +62,12 @@ std::filesystem::path output_path_of(const YAML::Node& step) {
 // A pipeline names its outputs, so the folders they go in are made as the run reaches each step (as a build tool
 // makes its output folders). A single command's -o into a missing folder stays an I/O error (exit 4): there a
 // missing folder is more likely a typo than a plan.
-void make_output_folder(const std::string& output, const std::string& label) {
+void make_output_folder(const std::string& output) {
   const std::filesystem::path folder = std::filesystem::path(output).parent_path();
   if (folder.empty()) return;
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
-  if (ec) throw_as(ExitCode::io, label + ": cannot make the folder " + folder.string() + " for " + output + ": " + ec.message());
+  if (ec) throw IoError(output + ": cannot make the folder " + folder.string() + ": " + ec.message());
 }
 
 Command* find(const std::vector<Command*>& commands, const std::string& which) {
@@ -268,7 +268,6 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
     Command* command = find(commands, step.at("step").as_string());
     const std::string label = "step " + std::to_string(i + 1) + "/" + std::to_string(steps.size()) + " " + command->name();
     checkpoint.starting(i);
-    if (const auto o = step.find("output"); o && writer) make_output_folder(o->as_string(), label);
     std::optional<StepResult> result;
     std::vector<const CrowdFile*> inputs;
     {
@@ -276,6 +275,9 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
       try {
         inputs = inputs_of(step, named, last, command->reads_crowds());
         if (!command->makes_crowd()) check_output_is_not_an_input(step);
+        // Every rank makes it (the same folder on a shared file system, or its own): a failure is then every
+        // rank's, never rank 0's alone while the others wait in a collective step.
+        if (const auto o = step.find("output")) make_output_folder(o->as_string());
         const ConfigNode own = own_keys(step, command->makes_crowd());
         if (collective && !command->makes_crowd()) {
           result = on_rank_0([&] { return command->run_step(own, inputs, context); }, context.communicator());

@@ -177,8 +177,10 @@ void write_samples(const std::filesystem::path& path, const edit::Samples& sampl
   file.commit();
 }
 
+// One answer line. Bytes that are not UTF-8 (a request line's own bytes quoted back in a parse error, a path) are
+// replaced rather than thrown on, so every line read gets its answer and the session goes on.
 void answer(std::ostream& out, const Json& json) {
-  out << json.dump() << '\n' << std::flush;
+  out << json.dump(-1, ' ', false, Json::error_handler_t::replace) << '\n' << std::flush;
 }
 
 class EditSession {

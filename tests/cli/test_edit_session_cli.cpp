@@ -241,6 +241,23 @@ TEST_CASE("edit --session answers a sequence of drags as one-shot edits do, bit 
   CHECK(compare_files(dir, dir / "s1.h5", dir / "s7.h5") == "same");
 }
 
+TEST_CASE("edit --session answers a line that is not UTF-8 with a refusal in valid JSON and carries on") {
+  const auto dir = test::scratch_dir("cli_edit_session_bytes");
+  const auto input = write_input(dir);
+  const auto job = test::write_file(dir / "base.yaml", base_job);
+  // The parser's message quotes the line's bytes back: the answer must still be one line of valid JSON.
+  const std::vector<std::string> lines = {"{\"id\": \"\xff\xfe\", \"drags\": [\xc3\x28]}",
+                                          [&] { Json ok = head_and_tail(1, 0, 0); ok["id"] = "fine"; return ok.dump(); }()};
+  int status = -1;
+  const std::vector<Json> answers = session(dir, input, job, lines, &status);  // every answer line parses as JSON
+  REQUIRE(status == 0);
+  REQUIRE(answers.size() == 2);
+  CHECK(answers[0]["ok"] == false);
+  CHECK(answers[0]["exit_code"] == 2);
+  CHECK(answers[1]["ok"] == true);
+  CHECK(answers[1]["id"] == "fine");
+}
+
 TEST_CASE("edit --session answers bad requests with the one-shot's exit code and carries on") {
   const auto dir = test::scratch_dir("cli_edit_session_errors");
   const auto input = write_input(dir);
