@@ -86,6 +86,11 @@ TEST_CASE("contradictory constraints are a numerical error naming them") {
   r = held_ends();
   r.pins.push_back({100, 0, Eigen::Vector2d(50, 50)});
   expect<NumericalError>(r, "contradictory handles: pins[0] and drags[0] both place agent 100 at frame 0");
+  // Several contradictions: the first one in request order is named (the drag places agent 100 before 101).
+  r = held_ends();
+  r.pins.push_back({101, 0, Eigen::Vector2d(50, 50)});
+  r.pins.push_back({100, 0, Eigen::Vector2d(60, 60)});
+  expect<NumericalError>(r, "contradictory handles: pins[1] and drags[0] both place agent 100 at frame 0");
 }
 
 TEST_CASE("a system the handles do not determine is a singular-system error") {

@@ -226,10 +226,9 @@ ComplexSystem assemble_complex(const FeatureSet& features, StepKind step, double
 
 void esc_rhs(const FeatureSet& features, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& original,
              const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& step1, const VertexSplit& split,
-             Eigen::VectorXcd& rhs) {
-  const int n = split.agents;
-  const std::size_t samples = n > 0 ? split.free_index.size() / static_cast<std::size_t>(n) : 0;
-  const auto range = sample_ranges(features.spatial, n, samples);
+             const std::vector<std::size_t>& spatial_ranges, Eigen::VectorXcd& rhs) {
+  const auto& range = spatial_ranges;
+  const std::size_t samples = range.empty() ? 0 : range.size() - 1;
   rhs.setZero(static_cast<Eigen::Index>(split.free.size()));
   // A spatial feature touches its own sample only: samples in parallel, features in order within one. Spatial
   // features come in threes, one triangle each (FeatureSet), and a triangle never spans two samples.
@@ -269,6 +268,12 @@ void esc_rhs(const FeatureSet& features, const Eigen::Ref<const Eigen::Matrix<do
       }
     }
   });
+}
+
+std::vector<std::size_t> spatial_sample_ranges(const FeatureSet& features, const VertexSplit& split) {
+  const int n = split.agents;
+  const std::size_t samples = n > 0 ? split.free_index.size() / static_cast<std::size_t>(n) : 0;
+  return sample_ranges(features.spatial, n, samples);
 }
 
 }  // namespace throng::edit

@@ -51,8 +51,13 @@ struct ComplexSystem {
 /// scale (the rotation of systems.h's fit_without_scale: a target edge is the original edge turned by it, so the
 /// change is (turn − 1) · edge). One pass over the spatial features, samples in parallel. rhs: #free (resized).
 ///   original, step1  #vertices by 2
+///   spatial_ranges  spatial_sample_ranges(features, split): computed once per feature set, since a drag's
+///                   rhs is rebuilt on every drag and the ranges are a serial pass over every feature
 void esc_rhs(const FeatureSet& features, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& original,
              const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 2>>& step1, const VertexSplit& split,
-             Eigen::VectorXcd& rhs);
+             const std::vector<std::size_t>& spatial_ranges, Eigen::VectorXcd& rhs);
+
+/// The spatial features by sample: those at sample s are [ranges[s], ranges[s + 1]) (#samples + 1 entries).
+std::vector<std::size_t> spatial_sample_ranges(const FeatureSet& features, const VertexSplit& split);
 
 }  // namespace throng::edit

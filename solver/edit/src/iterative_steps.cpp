@@ -401,7 +401,8 @@ void IterativeSteps::solve(const ResolvedRequest& current, Positions& x1, Positi
   report.solver_error_m = step1_->last_step;
   if (step2_) {
     const auto fit_start = Clock::now();
-    esc_rhs(features_, graph_.clip.positions, x1, split_, esc_rhs_);
+    if (spatial_ranges_.empty()) spatial_ranges_ = spatial_sample_ranges(features_, split_);
+    esc_rhs(features_, graph_.clip.positions, x1, split_, spatial_ranges_, esc_rhs_);
     report.fit_seconds = seconds_since(fit_start);
     solve_step(*step2_, current, du, &esc_rhs_, x2, report);
     report.iterations += step2_->iterations;

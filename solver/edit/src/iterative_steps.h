@@ -74,6 +74,7 @@ class IterativeSteps final : public EditSteps {
   SpaceTimeCoarsening coarsening_;
   std::unique_ptr<Step> step1_, step2_;
   Eigen::VectorXcd esc_rhs_;       // step 2's right-hand side from the fits
+  std::vector<std::size_t> spatial_ranges_;  // spatial_sample_ranges (the features and the samples do not change)
   // Facts for the report.
   double precompute_seconds_ = 0, assemble_seconds_ = 0, preconditioner_seconds_ = 0, columns_seconds_ = 0;
   int precompute_iterations_ = 0, precomputes_ = 0;

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 namespace throng::edit {
@@ -292,22 +291,26 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     bool rigid = false;
     Eigen::Vector2d p{0, 0};
   };
-  std::map<Index, std::pair<Eigen::Vector2d, std::string>> handles;
-  std::map<Index, Parametrisation> parametrisation;
+  // Every placement in request order (a flat list sorted once below: a request that holds the whole crowd's
+  // first and last frames places 2 × agents handles on every drag, and a map per placement cost more than the
+  // drag's own solve of a cached local region).
+  struct Placement {
+    Index v = 0;
+    Eigen::Vector2d target{0, 0};
+    std::size_t who = 0;    // index into `sources`
+    std::size_t order = 0;  // its place in request order
+    Parametrisation q;
+  };
+  std::vector<Placement> placements;
+  std::vector<std::string> sources;  // "pins[k]" / "drags[k]"
   std::vector<double> coordinates;
   Parametrisation current;
   auto place = [&](std::size_t sample, std::size_t agent_index, const Eigen::Vector2d& target, const std::string& who) {
     if (!target.allFinite()) throw ConfigError(who + ": target position " + point(target) + " is not finite");
-    const Index v = clip.vertex(sample, agent_index);
+    if (sources.empty() || sources.back() != who) sources.push_back(who);
     Parametrisation mine = current;
     mine.p = original(clip, sample, agent_index);
-    parametrisation.emplace(v, mine);
-    const auto [it, inserted] = handles.emplace(v, std::pair{target, who});
-    if (!inserted && (it->second.first - target).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + target.cwiseAbs().maxCoeff())) {
-      throw NumericalError("contradictory handles: " + it->second.second + " and " + who + " both place agent " +
-                           std::to_string(clip.ids[agent_index]) + " at frame " + std::to_string(clip.frames[sample]) +
-                           ", at " + point(it->second.first) + " and " + point(target));
-    }
+    placements.push_back({clip.vertex(sample, agent_index), target, sources.size() - 1, placements.size(), mine});
   };
   for (std::size_t k = 0; k < request.pins.size(); ++k) {
     const Pin& p = request.pins[k];
@@ -350,14 +353,45 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     }
   }
 
+  // One handle per vertex, its first placement's (the sort is stable); a later one elsewhere is a contradiction:
+  // the earliest such placement in request order is reported, with the one it contradicts.
+  std::stable_sort(placements.begin(), placements.end(), [](const Placement& a, const Placement& b) { return a.v < b.v; });
+  std::vector<std::size_t> firsts;  // index of each vertex's first placement, vertices increasing
+  const Placement* clash = nullptr;
+  const Placement* clashed = nullptr;
+  for (std::size_t i = 0; i < placements.size(); ++i) {
+    const Placement& p = placements[i];
+    if (firsts.empty() || placements[firsts.back()].v != p.v) {
+      firsts.push_back(i);
+      continue;
+    }
+    const Placement& first = placements[firsts.back()];
+    const bool differs = (first.target - p.target).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + p.target.cwiseAbs().maxCoeff());
+    if (differs && (clash == nullptr || p.order < clash->order)) {
+      clash = &p;
+      clashed = &first;
+    }
+  }
+  if (clash != nullptr) {
+    const auto agents = static_cast<Index>(clip.agent_count());
+    const auto sample = static_cast<std::size_t>(clash->v / agents);
+    const auto agent_index = static_cast<std::size_t>(clash->v % agents);
+    throw NumericalError("contradictory handles: " + sources[clashed->who] + " and " + sources[clash->who] +
+                         " both place agent " + std::to_string(clip.ids[agent_index]) + " at frame " +
+                         std::to_string(clip.frames[sample]) + ", at " + point(clashed->target) + " and " + point(clash->target));
+  }
+
   ResolvedRequest out;
-  out.handle_targets.resize(static_cast<Index>(handles.size()), 2);
+  out.handle_targets.resize(static_cast<Index>(firsts.size()), 2);
+  out.handle_vertices.reserve(firsts.size());
   std::vector<Eigen::Triplet<double>> basis;
-  for (const auto& [v, target] : handles) {
+  basis.reserve(6 * firsts.size());
+  for (std::size_t i : firsts) {
+    const Placement& placement = placements[i];
     const auto k = static_cast<Index>(out.handle_vertices.size());
-    out.handle_targets.row(k) = target.first.transpose();
-    out.handle_vertices.push_back(v);
-    const Parametrisation& q = parametrisation.at(v);
+    out.handle_targets.row(k) = placement.target.transpose();
+    out.handle_vertices.push_back(placement.v);
+    const Parametrisation& q = placement.q;
     if (q.rigid) {  // x = p_x cos − p_y sin + t_x,  y = p_y cos + p_x sin + t_y
       basis.emplace_back(2 * k, q.column, q.p.x());
       basis.emplace_back(2 * k, q.column + 1, -q.p.y());
@@ -370,7 +404,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
       basis.emplace_back(2 * k + 1, q.column + 1, 1.0);
     }
   }
-  out.handle_basis.resize(2 * static_cast<Index>(handles.size()), static_cast<Index>(coordinates.size()));
+  out.handle_basis.resize(2 * static_cast<Index>(firsts.size()), static_cast<Index>(coordinates.size()));
   out.handle_basis.setFromTriplets(basis.begin(), basis.end());
   out.handle_basis.makeCompressed();
   out.handle_coordinates = Eigen::Map<const Eigen::VectorXd>(coordinates.data(), static_cast<Index>(coordinates.size()));

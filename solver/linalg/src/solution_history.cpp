@@ -83,12 +83,16 @@ void SolutionHistory::add(const ComplexBlock& x, const ComplexBlock& Ax) {
   }
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXcd c = adjoint_times(W_, v);  // v_jᴴ A v = w_jᴴ v
-    for (Eigen::Index i = 0; i < n; ++i) {
-      for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(size_); ++j) {
-        v(i, 0) -= times(V_(i, j), c[j]);
-        w(i, 0) -= times(W_(i, j), c[j]);
+    // Rows in parallel: each row's update is the same sequence of operations whatever the thread count.
+    const auto k = static_cast<Eigen::Index>(size_);
+    parallel_for(static_cast<std::size_t>(n), sum_block, [&](std::size_t begin, std::size_t end) {
+      for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
+        for (Eigen::Index j = 0; j < k; ++j) {
+          v(i, 0) -= times(V_(i, j), c[j]);
+          w(i, 0) -= times(W_(i, j), c[j]);
+        }
       }
-    }
+    });
   }
   const double left = column_dots(v, w)[0].real();
   if (!(left > in_span * energy)) return;
