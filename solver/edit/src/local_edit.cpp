@@ -148,7 +148,10 @@ struct LocalEditor::State {
   }
 
   // The constraint rows on the region's local unknowns (local_of filled for the region).
+  // Without constraints no column of C is visited (C has one per unknown of the whole crowd: walking them would
+  // make every cached drag's cost grow with the crowd).
   linalg::SparseMatrix local_constraints(const linalg::SparseMatrix& C, Index local_vertices) const {
+    if (C.nonZeros() == 0) return linalg::SparseMatrix(C.rows(), 2 * local_vertices);
     std::vector<Eigen::Triplet<double>> entries;
     for (Index k = 0; k < C.outerSize(); ++k) {
       for (linalg::SparseMatrix::InnerIterator it(C, k); it; ++it) {
@@ -399,7 +402,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Reques
     const Index v = resolved.handle_vertices[k];
     if (resolved.handle_targets.row(static_cast<Index>(k)) != s.current.row(v)) seeds.push_back(s.partition.part_of[static_cast<std::size_t>(v)]);
   }
-  for (Index k = 0; k < resolved.C.outerSize(); ++k) {
+  for (Index k = 0; resolved.C.nonZeros() > 0 && k < resolved.C.outerSize(); ++k) {
     for (linalg::SparseMatrix::InnerIterator it(resolved.C, k); it; ++it) {
       seeds.push_back(s.partition.part_of[static_cast<std::size_t>(it.col() / 2)]);
     }

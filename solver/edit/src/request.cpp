@@ -518,7 +518,9 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
         request.constraints[k]);
   }
   out.C.resize(static_cast<Index>(d.size()), 2 * static_cast<Index>(clip.positions.rows()));
-  out.C.setFromTriplets(entries.begin(), entries.end());
+  // (Without entries the empty matrix is already right: setFromTriplets would still sort through a copy with a
+  // column per unknown of the crowd, a cost every drag of a cached local region would pay.)
+  if (!entries.empty()) out.C.setFromTriplets(entries.begin(), entries.end());
   out.d = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Index>(d.size()));
   return out;
 }
