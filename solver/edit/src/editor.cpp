@@ -1,4 +1,5 @@
 #include "direct_steps.h"
+#include "edit_result.h"
 #include "iterative_steps.h"
 #include "request.h"
 #include "resample.h"
@@ -291,8 +292,7 @@ Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const
     p.update(0.8, "edit: solve");
     const auto& samples = editor.deform(request);
     p.update(0.95, "edit: resample");
-    const Clip& clip = editor.graph().clip;
-    result = {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames, std::nullopt};
+    result = edit_result(editor, samples);
   }
   result.report.max_output_residual = max_request_residual(crowd, result.crowd, result.first_frame, request);
   p.update(1.0, "edit: done");

@@ -1,4 +1,5 @@
 // LocalEditor: the Editor's two steps over the region an edit reaches (see throng/edit/local_edit.h).
+#include "edit_result.h"
 #include "request.h"
 #include "resample.h"
 #include "systems.h"
@@ -591,8 +592,7 @@ Result edit_locally(const CrowdMotion& crowd, const Options& options, const Requ
   p.update(0.3, "edit: local solve");
   const auto& samples = editor.deform(request);
   p.update(0.95, "edit: resample");
-  const Clip& clip = editor.graph().clip;
-  return {editor.resample(samples), editor.report(), clip.first_frame, clip.last_frame, clip.frames, editor.boundary_step()};
+  return edit_result(editor, samples);
 }
 
 }  // namespace throng::edit

@@ -1,3 +1,4 @@
+#include "edit_result.h"
 #include "request.h"
 
 #include <throng/core/errors.h>
@@ -88,15 +89,7 @@ struct Session::State {
   // The edited clip for `request`, as edit_group_motion gives it.
   Result deform(const Request& request) {
     const auto& samples = solve(request);
-    Result result;
-    if (local) {
-      const Clip& clip = local->graph().clip;
-      result = {local->resample(samples), local->report(), clip.first_frame, clip.last_frame, clip.frames,
-                local->boundary_step()};
-    } else {
-      const Clip& clip = global->graph().clip;
-      result = {global->resample(samples), global->report(), clip.first_frame, clip.last_frame, clip.frames, std::nullopt};
-    }
+    Result result = local ? edit_result(*local, samples) : edit_result(*global, samples);
     result.report.max_output_residual = max_request_residual(input.motion, result.crowd, result.first_frame, request);
     return result;
   }
