@@ -6,6 +6,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
+#include <throng/process/huge_pages.h>
 #include <throng/process/process.h>
 
 #include <CLI/CLI.hpp>
@@ -46,6 +47,7 @@ CLI::Validator whole_number() {
 
 int main(int argc, char** argv) {
   using namespace throng;
+  restart_with_huge_pages(argv);  // first: the heap's huge pages are decided when the program starts
   install_interrupt_cleanup();
   Process process;  // BLAS kernels chosen before any BLAS call, so no result depends on which method ran first
 

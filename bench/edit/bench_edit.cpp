@@ -32,6 +32,7 @@
 #include <throng/edit/edit.h>
 #include <throng/edit/session.h>
 #include <throng/linalg/mpi.h>
+#include <throng/process/huge_pages.h>
 #include <throng/process/process.h>
 
 #include <benchmark/benchmark.h>
@@ -356,6 +357,7 @@ void register_benchmarks() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  throng::restart_with_huge_pages(argv);  // as the program does (throng/process/huge_pages.h)
   const throng::Process process;  // the BLAS kernels the program uses
   // Under mpiexec every rank runs the same sequence (the PETSc solves are collective); rank 0 reports.
   if (process.world_rank() != 0) (void)std::freopen("/dev/null", "w", stdout);

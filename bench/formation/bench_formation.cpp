@@ -15,6 +15,7 @@
 // The cost is dense linear algebra through OpenBLAS (eigen-decompositions, products). OpenBLAS 0.3.21 does not
 // know this machine's CPU model and would fall back to its generic kernels, about 3 times slower here; every
 // benchmark program's main sets up the process (throng/process/process.h), which switches to the right ones.
+#include <throng/process/huge_pages.h>
 #include <throng/formation/formation.h>
 #include <throng/io/config.h>
 #include <throng/io/formation_job.h>
@@ -181,6 +182,7 @@ BENCHMARK(BM_CrowdReshuffled)
 }  // namespace
 
 int main(int argc, char** argv) {
+  throng::restart_with_huge_pages(argv);  // as the program does (throng/process/huge_pages.h)
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   throng::bench::GrowthReporter reporter;

@@ -11,6 +11,7 @@
 #include <throng/core/random.h>
 #include <throng/linalg/least_squares.h>
 #include <throng/linalg/mpi.h>
+#include <throng/process/huge_pages.h>
 #include <throng/process/process.h>
 
 #include <benchmark/benchmark.h>
@@ -214,6 +215,7 @@ BENCHMARK(BM_PetscSetupAndSolve)
     ->ArgNames({"side", "pc"})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 int main(int argc, char** argv) {
+  throng::restart_with_huge_pages(argv);  // as the program does (throng/process/huge_pages.h)
   const throng::Process process;  // the BLAS kernels the program uses
   // Under mpiexec every rank runs the same sequence (the PETSc solves are collective); rank 0 reports.
   if (process.world_rank() != 0) (void)std::freopen("/dev/null", "w", stdout);

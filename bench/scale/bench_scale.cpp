@@ -52,6 +52,7 @@
 #include <throng/edit/edit.h>
 #include <throng/edit/local_edit.h>
 #include <throng/linalg/mpi.h>
+#include <throng/process/huge_pages.h>
 #include <throng/process/process.h>
 
 #include <benchmark/benchmark.h>
@@ -292,6 +293,7 @@ class Recorder final : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  throng::restart_with_huge_pages(argv);  // as the program does (throng/process/huge_pages.h)
   const throng::Process process;  // the BLAS kernels the program uses
   // Under mpiexec every rank runs the same sequence (the PETSc solves are collective); rank 0 reports.
   const bool writer = process.world_rank() == 0;

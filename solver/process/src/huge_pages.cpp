@@ -1,0 +1,30 @@
+#include <throng/process/huge_pages.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace throng {
+
+bool wants_huge_page_restart(const char* tunables, const char* opt_out, std::string_view thp_mode) {
+  if (tunables != nullptr) return false;
+  if (opt_out != nullptr && std::string_view(opt_out) == "0") return false;
+  return thp_mode.find("[madvise]") != std::string_view::npos;
+}
+
+void restart_with_huge_pages(char** argv) {
+  std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
+  const std::string mode((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (argv == nullptr || argv[0] == nullptr ||
+      !wants_huge_page_restart(std::getenv("GLIBC_TUNABLES"), std::getenv("THRONG_HUGE_PAGES"), mode)) {
+    return;
+  }
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
+  execv("/proc/self/exe", argv);
+  // Not re-executed (no /proc, say): go on as we are, with the tunable set for any child we start.
+}
+
+}  // namespace throng
