@@ -423,7 +423,7 @@ TEST_CASE("job errors found only when the job is run still name the file and lin
     write_file(job, small_job("output_rate: 100000\nduration: 100000\n").replace(small_job().find("duration: 6\n"), 12, ""));
     CHECK(run("--quiet sketch " + job.string() + " -o " + out.string(), &message) == 2);
     CHECK_THAT(message, Contains("job.yaml: up to 10000000001 frames (duration 100000 s × output_rate 100000 Hz) of 8 "
-                                 "agents need about 5.76e+03 GB") &&
+                                 "agents need about 160 GB of memory while written as they go") &&
                             Contains("lower output_rate, duration or agents.count"));
     CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set output_rate=1e5 --set max_duration=1e5 -o " +
                   out.string(),

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 namespace throng::sketch {
 namespace {
@@ -16,28 +18,25 @@ double physical_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
 }
 
-}  // namespace
-
-void describe(OptionBinder& b, Job& job) { describe(b, job.options); }
-
-void check_memory(const Options& o, double memory) {
+std::string frames_text(const Options& o, double frames) {
   const bool fixed = o.duration_s > 0;
-  const double seconds = fixed ? o.duration_s : o.max_duration_s;
-  const double frames = std::floor(seconds * o.output_rate_hz) + 1;
-  const double bytes = frames * static_cast<double>(o.agent_count) * 72.0;  // runner.h
-  if (memory <= 0 || bytes <= memory) return;
-  throw ConfigError("up to " + std::to_string(std::llround(std::min(frames, 1e18))) + " frames (" +
-                    (fixed ? "duration " : "max_duration ") + with_digits(seconds, 6) + " s × output_rate " +
-                    with_digits(o.output_rate_hz, 6) + " Hz) of " + std::to_string(o.agent_count) + " agents need about " +
-                    with_digits(bytes / 1e9, 3) + " GB of memory (72 bytes per agent and frame), more than this machine's " +
-                    with_digits(memory / 1e9, 3) + " GB; lower output_rate, " +
-                    (fixed ? "duration" : "max_duration (or set a duration)") + " or agents.count");
+  return "up to " + std::to_string(std::llround(std::min(frames, 1e18))) + " frames (" + (fixed ? "duration " : "max_duration ") +
+         with_digits(fixed ? o.duration_s : o.max_duration_s, 6) + " s × output_rate " + with_digits(o.output_rate_hz, 6) +
+         " Hz) of " + std::to_string(o.agent_count) + " agents";
 }
 
-Run run(const Crowds&, const Job& job, Progress& progress, const Communicator&) {
-  check_memory(job.options, physical_memory_bytes());
+std::string lower_text(const Options& o) {
+  return std::string("lower output_rate, ") + (o.duration_s > 0 ? "duration" : "max_duration (or set a duration)") + " or agents.count";
+}
+
+double most_frames(const Options& o) {
+  return std::floor((o.duration_s > 0 ? o.duration_s : o.max_duration_s) * o.output_rate_hz) + 1;
+}
+
+// The sketch's Run from its simulation.
+Run finish_run(const Job& job, SimulationResult result) {
   Run out;
-  out.result = simulate(job.drawing, job.scene, job.options, progress);
+  out.result = std::move(result);
   out.crowd.motion = std::move(out.result.motion);
   out.result.motion = CrowdMotion{};
   out.crowd.scene = job.scene;
@@ -55,6 +54,39 @@ Run run(const Crowds&, const Job& job, Progress& progress, const Communicator&) 
                      " agent-steps ended overlapping an obstacle (obstacles closer together than an agent's width)";
   }
   return out;
+}
+
+}  // namespace
+
+void describe(OptionBinder& b, Job& job) { describe(b, job.options); }
+
+void check_memory(const Options& o, double memory) {
+  const double frames = most_frames(o);
+  const double bytes = frames * static_cast<double>(o.agent_count) * 72.0;  // runner.h
+  if (memory <= 0 || bytes <= memory) return;
+  throw ConfigError(frames_text(o, frames) + " need about " + with_digits(bytes / 1e9, 3) +
+                    " GB of memory (72 bytes per agent and frame), more than this machine's " +
+                    with_digits(memory / 1e9, 3) + " GB; " + lower_text(o));
+}
+
+void check_streamed_memory(const Options& o, double held_bytes, double memory) {
+  const double frames = most_frames(o);
+  const double bytes = frames * 16.0 + held_bytes;  // runner.h
+  if (memory <= 0 || bytes <= memory) return;
+  throw ConfigError(frames_text(o, frames) + " need about " + with_digits(bytes / 1e9, 3) +
+                    " GB of memory while written as they go (16 bytes per frame for its time and step, and " +
+                    with_digits(held_bytes / 1e9, 3) + " GB of frame blocks), more than this machine's " +
+                    with_digits(memory / 1e9, 3) + " GB; " + lower_text(o));
+}
+
+Run run(const Crowds&, const Job& job, Progress& progress, const Communicator&) {
+  check_memory(job.options, physical_memory_bytes());
+  return finish_run(job, simulate(job.drawing, job.scene, job.options, progress));
+}
+
+Run run(const Crowds&, const Job& job, Progress& progress, const Communicator&, FrameSink& sink, double held_bytes) {
+  check_streamed_memory(job.options, held_bytes, physical_memory_bytes());
+  return finish_run(job, simulate(job.drawing, job.scene, job.options, sink, progress));
 }
 
 void describe(ReportWriter& w, const Run& run) {

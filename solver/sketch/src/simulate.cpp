@@ -1,13 +1,49 @@
-// simulate(): strokes → course → agents → simulation, sampled into a CrowdMotion at the output rate.
+// simulate(): strokes → course → agents → simulation, sampled at the output rate into a CrowdMotion or handed to a
+// FrameSink frame by frame (a crowd file written as it goes).
 #include <throng/core/errors.h>
 #include <throng/sketch/sketch.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <span>
 
 namespace throng::sketch {
 
-SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options, Progress& progress) {
+namespace {
+
+// The in-memory sink: every frame appended to a CrowdMotion, room for all of them reserved up front (with
+// duration 0, up to max_duration's): no reallocation, whose copy would need the old and the new block at once.
+// Pages that no frame reaches are never touched.
+class MotionSink final : public FrameSink {
+ public:
+  explicit MotionSink(CrowdMotion& motion) : m_(motion) {}
+  void start(std::size_t agents, std::size_t frames, bool) override {
+    n_ = agents;
+    m_.positions.reserve(frames * n_ * 3);
+    m_.orientations.reserve(frames * n_ * 4);
+    m_.actions.reserve(frames * n_);
+  }
+  Frame next_frame() override {
+    const std::size_t m = m_.positions.size() / (3 * n_);
+    m_.positions.resize(m_.positions.size() + 3 * n_);
+    m_.orientations.resize(m_.orientations.size() + 4 * n_);
+    m_.actions.resize(m_.actions.size() + n_);
+    return {std::span<double>(m_.positions.data() + m * 3 * n_, 3 * n_),
+            std::span<double>(m_.orientations.data() + m * 4 * n_, 4 * n_),
+            std::span<std::int32_t>(m_.actions.data() + m * n_, n_)};
+  }
+  void commit() override {}
+
+ private:
+  CrowdMotion& m_;
+  std::size_t n_ = 0;
+};
+
+}  // namespace
+
+SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options, FrameSink& sink,
+                          Progress& progress) {
   validate(options);
   progress.update(0.0, "analysing strokes");
   Course course = analyse_strokes(drawing.strokes, options);
@@ -29,11 +65,7 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
   const double dt = options.time_step_s;
   // Frame m is at m / rate; a frame within a billionth of a step of the end still counts.
   const auto last_frame = static_cast<std::size_t>(std::floor(end * options.output_rate_hz * (1 + 1e-12) + 1e-9));
-  // Room for every frame up front (with duration 0, up to max_duration's): no reallocation, whose copy would
-  // need the old and the new block at once. Pages that no frame reaches are never touched.
-  motion.positions.reserve((last_frame + 1) * N * 3);
-  motion.orientations.reserve((last_frame + 1) * N * 4);
-  motion.actions.reserve((last_frame + 1) * N);
+  sink.start(N, last_frame + 1, fixed);
   motion.action_table = standard_actions();
   motion.times.reserve(last_frame + 1);
 
@@ -54,12 +86,10 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
       }
     }
     motion.times.push_back(time);
-    motion.positions.resize(motion.positions.size() + 3 * N);
-    sim.sample(time, std::span<double>(motion.positions.data() + m * 3 * N, 3 * N));
-    motion.orientations.resize(motion.orientations.size() + 4 * N);
-    motion.actions.resize(motion.actions.size() + N);
-    sim.take_pose(time, std::span<double>(motion.orientations.data() + m * 4 * N, 4 * N),
-                  std::span<std::int32_t>(motion.actions.data() + m * N, N));
+    const FrameSink::Frame frame = sink.next_frame();
+    sim.sample(time, frame.positions);
+    sim.take_pose(time, frame.orientations, frame.actions);
+    sink.commit();
   }
   progress.update(1.0, "simulating crowd");
 
@@ -70,6 +100,16 @@ SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Opti
   result.step_count = sim.step_count();
   result.unresolved_obstacle_contacts = sim.unresolved_obstacle_contacts();
   result.finished = sim.finished();
+  return result;
+}
+
+SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options, Progress& progress) {
+  CrowdMotion motion;
+  MotionSink sink(motion);
+  SimulationResult result = simulate(drawing, scene, options, sink, progress);
+  result.motion.positions = std::move(motion.positions);
+  result.motion.orientations = std::move(motion.orientations);
+  result.motion.actions = std::move(motion.actions);
   return result;
 }
 

@@ -39,9 +39,19 @@ struct Run {
 /// With duration 0 the bound is max_duration's frame count. memory_bytes 0: unknown, no check.
 void check_memory(const Options& options, double memory_bytes);
 
+/// The same for a run whose frames are written as they go (`throng sketch`): only their times stay in memory (8 B
+/// per frame, and 8 more for the step numbers written at the end), with `held_bytes` of frame blocks the writer
+/// holds whatever the frame count. With duration 0 the bound is max_duration's frame count.
+void check_streamed_memory(const Options& options, double held_bytes, double memory_bytes);
+
 /// Simulates the job (check_memory against this machine's memory first). A sketch reads no crowd (`inputs` are
 /// not used) and runs on one process.
 [[nodiscard]] Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communicator& communicator);
+/// The same with the frames handed to `sink` as they are made (check_streamed_memory with the `held_bytes` the
+/// sink holds, first): the Run's crowd has no per-frame arrays (positions, orientations, actions); its times,
+/// ids, radii, species and action table, and everything else, are run()'s.
+[[nodiscard]] Run run(const Crowds& inputs, const Job& job, Progress& progress, const Communicator& communicator,
+                      FrameSink& sink, double held_bytes);
 
 /// The report: the same fields on stdout and in /parameters/throng/sketch.
 void describe(ReportWriter& w, const Run& run);

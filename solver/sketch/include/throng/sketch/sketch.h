@@ -348,9 +348,35 @@ struct SimulationResult {
   bool finished = false;  ///< every agent finished its path before the duration ran out
 };
 
+/// Where simulate() puts the output frames as it makes them (frame 0, 1, ... in order): in memory (simulate()
+/// without a sink: SimulationResult::motion), or a file written as the simulation goes (`throng sketch`).
+class FrameSink {
+ public:
+  /// Where one frame goes: positions #agents × 3, orientations #agents × 4, actions #agents (see sample() and
+  /// take_pose()).
+  struct Frame {
+    std::span<double> positions;
+    std::span<double> orientations;
+    std::span<std::int32_t> actions;
+  };
+  virtual ~FrameSink() = default;
+  /// Once, before the first frame: the agent count and the frame count when `known` (a duration), else the most
+  /// frames there can be (max_duration's).
+  virtual void start(std::size_t agents, std::size_t frames, bool known) = 0;
+  /// Where the next frame goes, valid until commit().
+  [[nodiscard]] virtual Frame next_frame() = 0;
+  /// The frame from next_frame() is filled.
+  virtual void commit() = 0;
+};
+
 /// The whole method: analyse the strokes, place or take the agents, simulate, sample. Reports progress.
 [[nodiscard]] SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options,
                                         Progress& progress);
 [[nodiscard]] SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options);
+/// The same with the frames handed to `sink` as they are made: the result's motion has the ids, radii, species,
+/// action table and times (one per frame), and no per-frame arrays (positions, orientations, actions). The same
+/// frames, bit for bit, as the in-memory simulate()'s.
+[[nodiscard]] SimulationResult simulate(const Drawing& drawing, const Scene& scene, const Options& options,
+                                        FrameSink& sink, Progress& progress);
 
 }  // namespace throng::sketch

@@ -1,0 +1,138 @@
+// `throng sketch` end to end, the crowd file included: agent-steps per second of the whole command (without its
+// argument parsing: the job is built here), and the share of the time spent writing the file (counter
+// `write_share`). Target (issue 19): ≥ 10 M agent-steps/s at 10,000 agents on 2 cores, the file written; the
+// writing at most 20 % of the time.
+//
+//   mode 0  before issue 19: every frame held in memory, then write_crowd_file (sketch::run + write_crowd_file)
+//   mode 1  written as it goes, each full block compressed and written on the simulating thread (the command)
+//   mode 2  written as it goes, blocks compressed and written by a writer thread beside the simulation
+//
+// The crowd: N agents at 1 per m² in a square of side √N metres walking east between auxiliary lines (as
+// bench_sketch's BM_Step), 4 s of crowd time (100 steps) at 10 frames per second (41 frames).
+//
+// Run: build/<dir>/bench/sketch/bench_sketch_command --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+#include <throng/core/communicator.h>
+#include <throng/core/parallel.h>
+#include <throng/core/random.h>
+#include <throng/io/crowd_file.h>
+#include <throng/io/crowd_stream.h>
+#include <throng/io/sketch_job.h>
+#include <throng/sketch/runner.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <numeric>
+#include <unistd.h>
+
+#include "scenes.h"
+
+using namespace throng;
+using namespace throng::sketch;
+
+namespace {
+
+Job square_job(std::size_t n) {
+  const double side = std::sqrt(static_cast<double>(n));
+  const auto per_row = static_cast<std::size_t>(std::ceil(side));
+  Job job;
+  job.options.wide_distance_m = 1.0;
+  job.options.narrow_distance_m = 1.0;
+  job.options.resample_spacing_m = 1.0;
+  job.options.duration_s = 4.0;
+  job.options.output_rate_hz = 10.0;
+  const double length = 3 * side;  // nobody arrives during the run
+  job.drawing.strokes = {scenes::straight_stroke({0, 0.5 * side}, {length, 0.5 * side}, 2, 1.3),
+                         scenes::straight_stroke({0, 0}, {length, 0}, 2, 1.3),
+                         scenes::straight_stroke({0, side}, {length, side}, 2, 1.3)};
+  Rng rng(5);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = static_cast<double>(i % per_row) + 0.5, y = static_cast<double>(i / per_row) + 0.5;
+    job.drawing.initial_positions.emplace_back(x + rng.uniform(-0.2, 0.2), y + rng.uniform(-0.2, 0.2));
+  }
+  return job;
+}
+
+class FileSink final : public FrameSink {
+ public:
+  FileSink(std::filesystem::path target, bool background) : target_(std::move(target)), background_(background) {}
+  void start(std::size_t agents, std::size_t frames, bool known) override {
+    CrowdStreamWriter::Shape shape;
+    shape.ids.resize(agents);
+    std::iota(shape.ids.begin(), shape.ids.end(), std::int64_t{0});
+    shape.frames = frames;
+    shape.frames_known = known;
+    shape.background = background_;
+    writer = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
+  }
+  Frame next_frame() override {
+    const CrowdStreamWriter::Frame f = writer->next_frame();
+    return {f.positions, f.orientations, f.actions};
+  }
+  void commit() override { writer->commit_frame(); }
+  std::unique_ptr<CrowdStreamWriter> writer;
+
+ private:
+  std::filesystem::path target_;
+  bool background_;
+};
+
+CrowdFile file_of(Run& run) {
+  CrowdFile out;
+  static_cast<Crowd&>(out) = std::move(run.crowd);
+  out.provenance.program_version = "bench";
+  return out;
+}
+
+ExtraWriter record(const Run& run) {
+  return [&run](const h5::Group& parameters) { write_data(parameters.create_group("sketch"), run); };
+}
+
+void BM_SketchCommand(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto mode = state.range(1);
+  const Job job = square_job(n);
+  const ThreadLimit limit(2);
+  const std::filesystem::path out =
+      std::filesystem::temp_directory_path() / ("bench_sketch_command_" + std::to_string(getpid()) + ".h5");
+  NoProgress quiet;
+  std::size_t agent_steps = 0;
+  double writing = 0, total = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    if (mode == 0) {
+      Run run = sketch::run({}, job, quiet, Communicator::single());
+      const auto written = std::chrono::steady_clock::now();
+      agent_steps += run.result.step_count * n;
+      const CrowdFile file = file_of(run);
+      write_crowd_file(out, file, record(run));
+      writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count();
+    } else {
+      FileSink sink(out, mode == 2);
+      Run run = sketch::run({}, job, quiet, Communicator::single(), sink, 0.0);
+      agent_steps += run.result.step_count * n;
+      const CrowdFile file = file_of(run);
+      sink.writer->finish(file, record(run));
+      writing += sink.writer->seconds_writing();
+    }
+    total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  std::filesystem::remove(out);
+  state.SetItemsProcessed(static_cast<std::int64_t>(agent_steps));
+  state.counters["write_share"] = total > 0 ? writing / total : 0.0;
+}
+BENCHMARK(BM_SketchCommand)
+    ->ArgNames({"agents", "mode"})
+    ->ArgsProduct({{10000, 100000}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_SketchCommand)
+    ->ArgNames({"agents", "mode"})
+    ->ArgsProduct({{1000000}, {0, 1}})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace

@@ -1,0 +1,249 @@
+// throng sketch writes its crowd file as the simulation goes (issue 19, io/crowd_stream.h): the streamed file
+// holds the same datasets, values, attributes and chunk shapes as the file written from memory (h5diff), for any
+// thread count and whether or not the frame count is known in advance; a run with far more frames than it could
+// hold in memory keeps its memory flat; a run stopped by a signal leaves the previous output (or none) and no
+// temporary.
+#include <throng/core/errors.h>
+#include <throng/core/parallel.h>
+#include <throng/io/crowd_file.h>
+#include <throng/io/crowd_stream.h>
+#include <throng/io/hdf5.h>
+#include <throng/sketch/runner.h>
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "scenes.h"
+#include "test_paths.h"
+
+using namespace throng;
+using namespace throng::sketch;
+
+namespace {
+
+int shell(const std::string& line) {
+  const int status = std::system(line.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The chunk shapes and filters of every dataset, as h5dump shows them.
+std::string storage_layout(const std::filesystem::path& file) {
+  const auto text = file.string() + ".layout";
+  shell("h5dump -p -H " + file.string() + " | grep -E 'DATASET |CHUNKED|SHUFFLE|DEFLATE|LEVEL' > " + text);
+  return read_text(text);
+}
+
+// Frames written to a CrowdStreamWriter, as `throng sketch` writes them.
+class WriterSink final : public FrameSink {
+ public:
+  WriterSink(std::filesystem::path target, bool background) : target_(std::move(target)), background_(background) {}
+  void start(std::size_t agents, std::size_t frames, bool known) override {
+    CrowdStreamWriter::Shape shape;
+    shape.ids.resize(agents);
+    std::iota(shape.ids.begin(), shape.ids.end(), std::int64_t{0});
+    shape.frames = frames;
+    shape.frames_known = known;
+    shape.background = background_;
+    writer = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
+  }
+  Frame next_frame() override {
+    const CrowdStreamWriter::Frame f = writer->next_frame();
+    return {f.positions, f.orientations, f.actions};
+  }
+  void commit() override { writer->commit_frame(); }
+  std::unique_ptr<CrowdStreamWriter> writer;
+
+ private:
+  std::filesystem::path target_;
+  bool background_;
+};
+
+CrowdFile crowd_of(SimulationResult& r, const Scene& scene) {
+  CrowdFile f;
+  f.motion = std::move(r.motion);
+  f.scene = scene;
+  f.provenance.program_version = "0.1.0";
+  f.provenance.command_line = "throng sketch job.yaml -o out.h5";
+  f.provenance.options = "duration: 0\n";
+  f.provenance.seed = 7;
+  f.provenance.inputs = {"job.yaml"};
+  return f;
+}
+
+const ExtraWriter record = [](const h5::Group& parameters) {
+  parameters.create_group("sketch").set_attribute("issue", std::int64_t{19});
+};
+
+// The scene written from memory (write_crowd_file) and streamed (on `threads` threads, with or without the writer
+// thread); both files must hold the same objects, data and attributes, stored in the same chunks.
+void compare(const scenes::SketchScene& s, const std::string& name, std::size_t threads, bool background) {
+  const auto dir = test::scratch_dir("cli_sketch_stream_" + name);
+  {
+    const ThreadLimit limit(2);
+    SimulationResult memory = simulate(s.drawing, s.scene, s.options);
+    write_crowd_file(dir / "memory.h5", crowd_of(memory, s.scene), record);
+  }
+  {
+    const ThreadLimit limit(threads);
+    WriterSink sink(dir / "streamed.h5", background);
+    NoProgress quiet;
+    SimulationResult streamed = simulate(s.drawing, s.scene, s.options, sink, quiet);
+    CHECK(streamed.motion.positions.empty());
+    CHECK(streamed.motion.orientations.empty());
+    CHECK(streamed.motion.actions.empty());
+    sink.writer->finish(crowd_of(streamed, s.scene), record);
+  }
+  INFO(name << " on " << threads << " threads" << (background ? " with a writer thread" : ""));
+  CHECK(shell("h5diff " + (dir / "memory.h5").string() + " " + (dir / "streamed.h5").string() + " > " +
+              (dir / "h5diff.txt").string() + " 2>&1") == 0);
+  INFO(read_text(dir / "h5diff.txt"));
+  CHECK(storage_layout(dir / "memory.h5") == storage_layout(dir / "streamed.h5"));
+  const CrowdFile a = read_crowd_file(dir / "memory.h5"), b = read_crowd_file(dir / "streamed.h5");
+  CHECK(test::same_bits(a.motion.positions, b.motion.positions));
+  CHECK(test::same_bits(a.motion.orientations, b.motion.orientations));
+  CHECK(a.motion.actions == b.motion.actions);
+  CHECK(a.motion.times == b.motion.times);
+  CHECK(a.motion.frame_count() > 0);
+}
+
+// Starts `throng <args>` (cwd `folder`, SIGINT and SIGTERM at their defaults) and returns its process id.
+pid_t spawn(const std::filesystem::path& folder, const std::string& args) {
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+  std::string line = "cd " + folder.string() + " && exec " + test::command(args) + " >log.txt 2>&1";
+  std::string shell_path = "/bin/sh", dash_c = "-c";
+  char* argv[] = {shell_path.data(), dash_c.data(), line.data(), nullptr};
+  pid_t pid = 0;
+  REQUIRE(posix_spawn(&pid, "/bin/sh", nullptr, &attributes, argv, environ) == 0);
+  posix_spawnattr_destroy(&attributes);
+  return pid;
+}
+
+int exit_status(int status) { return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status); }
+
+// The temporary file `throng` writes `name` through (atomic_output.h), if there is one.
+std::filesystem::path temporary_of(const std::filesystem::path& folder, const std::string& name) {
+  for (const auto& e : std::filesystem::directory_iterator(folder)) {
+    if (e.path().filename().string().rfind("." + name + ".tmp-", 0) == 0) return e.path();
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("a streamed sketch file equals the one written from memory") {
+  scenes::SketchScene paper = scenes::paper_experiment();
+  SECTION("the paper experiment until everyone arrives: frame count not known, datasets created at the end") {
+    compare(paper, "paper", 2, false);
+  }
+  SECTION("the same at 100 frames per second: full blocks before the end, extendible datasets") {
+    paper.options.output_rate_hz = 100;
+    compare(paper, "paper_100hz", 2, false);
+    compare(paper, "paper_100hz_t1", 1, false);
+    compare(paper, "paper_100hz_writer", 2, true);
+  }
+  SECTION("agents removed at the end of their path: absent entries") {
+    paper.options.end_of_path = EndOfPath::remove;
+    paper.options.output_rate_hz = 50;
+    compare(paper, "paper_remove", 2, true);
+  }
+  SECTION("the large crowd for a fixed duration: every dataset created with its final shape") {
+    scenes::SketchScene large = scenes::large_crowd();
+    large.options.duration_s = 20;
+    compare(large, "large", 2, false);
+    compare(large, "large_t1", 1, true);
+  }
+}
+
+TEST_CASE("a streamed run holds its times and a few blocks and not its frames") {
+  Options o;
+  o.agent_count = 200;
+  o.duration_s = 200;
+  o.output_rate_hz = 100;  // 20,001 frames: 288 MB held in memory, 0.3 MB of times when streamed
+  CHECK_THROWS_AS(check_memory(o, 200e6), ConfigError);
+  CHECK_NOTHROW(check_streamed_memory(o, static_cast<double>(CrowdStreamWriter::held_bytes(200, false)), 200e6));
+  CHECK(CrowdStreamWriter::held_bytes(200, false) < 20'000'000);
+  CHECK(CrowdStreamWriter::held_bytes(1'000'000, false) == 2 * 68'000'000);  // two frames per block at most
+  o.duration_s = 0;
+  o.max_duration_s = 1e9;  // the frames' times alone do not fit
+  CHECK_THROWS_WITH(check_streamed_memory(o, 1e6, 200e9), Catch::Matchers::Contains("while written as they go"));
+
+  // The command: its peak resident memory stays far below what the frames would take in memory.
+  const auto dir = test::scratch_dir("cli_sketch_stream_memory");
+  const pid_t pid = spawn(dir, "--quiet sketch " + test::config("sketch-paper.yaml") +
+                                   " --set agents.count=200 --set duration=200 --set output_rate=100 -o paper.h5");
+  int status = 0;
+  rusage usage{};
+  REQUIRE(wait4(pid, &status, 0, &usage) == pid);
+  INFO(read_text(dir / "log.txt"));
+  REQUIRE(exit_status(status) == 0);
+  const double frames_bytes = 20001.0 * 200 * 72;
+  const double peak_bytes = static_cast<double>(usage.ru_maxrss) * 1024;
+  INFO("peak resident " << peak_bytes / 1e6 << " MB; the frames in memory: " << frames_bytes / 1e6 << " MB");
+  CHECK(peak_bytes < 0.5 * frames_bytes);
+  const h5::File file = h5::File::open(dir / "paper.h5");
+  CHECK(file.root().shape("particles/trajectory/position/value") == std::vector<std::uint64_t>{20001, 200, 3});
+  CHECK(file.root().shape("particles/trajectory/orientation/value") == std::vector<std::uint64_t>{20001, 200, 4});
+  CHECK(temporary_of(dir, "paper.h5").empty());
+}
+
+TEST_CASE("a streamed sketch stopped by a signal leaves the previous output or none and no temporary") {
+  for (const int signal : {SIGTERM, SIGINT}) {
+    for (const bool previous : {true, false}) {
+      const auto dir = test::scratch_dir("cli_sketch_stream_stop_" + std::to_string(signal) + (previous ? "_previous" : ""));
+      if (previous) test::write_file(dir / "paper.h5", "the previous output\n");
+      // Far longer than the test waits: stopped once blocks of frames are in the temporary file.
+      const pid_t pid = spawn(dir, "--quiet sketch " + test::config("sketch-paper.yaml") +
+                                       " --set agents.count=200 --set duration=100000 --set output_rate=100 -o paper.h5");
+      int status = 0;
+      bool ended = false;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+      for (;;) {
+        ended = waitpid(pid, &status, WNOHANG) == pid;
+        if (ended || std::chrono::steady_clock::now() > give_up) break;
+        const auto temporary = temporary_of(dir, "paper.h5");
+        std::error_code error;
+        if (!temporary.empty() && std::filesystem::file_size(temporary, error) > 8'000'000 && !error) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+      REQUIRE_FALSE(ended);
+      kill(pid, signal);
+      waitpid(pid, &status, 0);
+      INFO("signal " << signal << (previous ? ", a previous output" : ", no previous output"));
+      CHECK(exit_status(status) == 128 + signal);
+      CHECK(temporary_of(dir, "paper.h5").empty());
+      if (previous) {
+        CHECK(read_text(dir / "paper.h5") == "the previous output\n");
+      } else {
+        CHECK_FALSE(std::filesystem::exists(dir / "paper.h5"));
+      }
+    }
+  }
+}
