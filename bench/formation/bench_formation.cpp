@@ -23,7 +23,7 @@
 #include <throng/core/parallel.h>
 
 #include "../common/heap.h"
-#include "growth_reporter.h"
+#include "../common/growth_reporter.h"
 #include "scenes.h"
 
 #include <benchmark/benchmark.h>

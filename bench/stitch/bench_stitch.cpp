@@ -14,7 +14,7 @@
 // (throng/stitch/boundary.h), whose time is matching_s.
 //
 // Run:   bench_stitch --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-#include "../../tests/graph/synthetic_crowd.h"
+#include "two_clips.h"
 
 #include <throng/stitch/stitch.h>
 
@@ -33,21 +33,9 @@ namespace {
 
 using namespace throng;
 
-// G: a 25 × 40 block marching along a gentle arc; G′: another block (wider spacing, other jitter, turning the
-// other way) that starts near G's end — clips made apart, as stitching meets them.
-struct Clips {
-  CrowdMotion first, second;
-};
-
-const Clips& clips() {
-  static const Clips c = [] {
-    Clips k{test::marching_grid(25, 40, 300, 1.0, 1.2, 0.1, 0.05, 0.2, 5),
-            test::marching_grid(25, 40, 300, 1.2, 1.3, 0.1, -0.05, 0.2, 7)};
-    for (std::size_t f = 0; f < k.second.frame_count(); ++f) {
-      for (std::size_t a = 0; a < k.second.agent_count(); ++a) k.second.position(f, a).head<2>() += Eigen::Vector2d(35.0, 8.0);
-    }
-    return k;
-  }();
+// bench::two_clips (two_clips.h): two 25 × 40 blocks × 300 frames made apart.
+const bench::TwoClips& clips() {
+  static const bench::TwoClips c = bench::two_clips(25, 40, 300);
   return c;
 }
 

@@ -10,41 +10,17 @@
 #include <benchmark/benchmark.h>
 
 #include "../common/heap.h"
+#include "bulge_scene.h"
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 
 namespace {
 
 using namespace throng;
 
-// 25 rows × 40 walkers 1 m apart walking +x at 1.4 m/s for 600 frames of 0.1 s; the deformed copy bulges 3 m
-// sideways between x = 20 and 60 m (the same scene as tests/timewarp, larger).
-struct Scene {
-  CrowdMotion original, deformed;
-};
-
-const Scene& scene() {
-  static const Scene s = [] {
-    const std::size_t frames = 600;
-    const int rows = 25, cols = 40;
-    CrowdMotion c = CrowdMotion::with_shape(frames, static_cast<std::size_t>(rows * cols));
-    for (std::size_t f = 0; f < frames; ++f) {
-      c.times[f] = 0.1 * static_cast<double>(f);
-      for (int r = 0; r < rows; ++r) {
-        for (int k = 0; k < cols; ++k) c.position(f, static_cast<std::size_t>(r * cols + k)) << 1.4 * c.times[f] - r, k - 0.5 * (cols - 1), 0.0;
-      }
-    }
-    CrowdMotion d = c;
-    for (std::size_t f = 0; f < frames; ++f) {
-      for (std::size_t a = 0; a < d.agent_count(); ++a) {
-        auto p = d.position(f, a);
-        if (p.x() > 20 && p.x() < 60) p.y() += 3.0 * std::sin(std::numbers::pi * (p.x() - 20) / 40);
-      }
-    }
-    return Scene{std::move(c), std::move(d)};
-  }();
+// bench::bulge_scene (bulge_scene.h): 25 rows × 40 walkers × 600 frames, the deformed copy bulging sideways.
+const bench::BulgeScene& scene() {
+  static const bench::BulgeScene s = bench::bulge_scene(25, 40, 600);
   return s;
 }
 

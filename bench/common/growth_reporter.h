@@ -4,6 +4,8 @@
 // each regime the family reports in its counter "regime" (0 flat, 1 hierarchy: one group's O(n³) against a
 // tree of bounded groups), printed as
 //   growth BM_Crowd, automatic hierarchy (n = 5000, 10000, 20000): time ~ n^1.05, peak heap ~ n^1.00
+// (a family without the counter "regime" is printed without one: "growth methods/collide/agents (n = ...)").
+// Shared by bench_formation and bench_methods (bench/scale).
 #pragma once
 
 #include <benchmark/benchmark.h>
@@ -37,7 +39,7 @@ class GrowthReporter : public benchmark::ConsoleReporter {
       p.n = individuals->second.value;
       p.time = run.GetAdjustedRealTime();
       p.heap = heap == run.counters.end() ? 0.0 : heap->second.value;
-      const int r = regime == run.counters.end() ? 0 : static_cast<int>(regime->second.value);
+      const int r = regime == run.counters.end() ? -1 : static_cast<int>(regime->second.value);
       series_[{run.run_name.function_name, r}].push_back(p);
     }
   }
@@ -54,8 +56,9 @@ class GrowthReporter : public benchmark::ConsoleReporter {
         time.push_back(std::log(p.time));
         heap.push_back(std::log(std::max(p.heap, 1e-9)));
       }
-      std::printf("growth %s, %s (n = %s): time ~ n^%.2f, peak heap ~ n^%.2f\n", key.first.c_str(),
-                  key.second == 0 ? "flat" : "automatic hierarchy", sizes.c_str(), slope(x, time), slope(x, heap));
+      const std::string regime = key.second < 0 ? "" : key.second == 0 ? ", flat" : ", automatic hierarchy";
+      std::printf("growth %s%s (n = %s): time ~ n^%.2f, peak heap ~ n^%.2f\n", key.first.c_str(), regime.c_str(),
+                  sizes.c_str(), slope(x, time), slope(x, heap));
     }
     std::fflush(stdout);
   }
