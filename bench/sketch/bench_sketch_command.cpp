@@ -18,6 +18,7 @@
 #include <throng/io/crowd_file.h>
 #include <throng/io/crowd_stream.h>
 #include <throng/io/sketch_job.h>
+#include <throng/io/sketch_stream.h>
 #include <throng/sketch/runner.h>
 
 #include <chrono>
@@ -55,29 +56,6 @@ Job square_job(std::size_t n) {
   return job;
 }
 
-class FileSink final : public FrameSink {
- public:
-  FileSink(std::filesystem::path target, bool background) : target_(std::move(target)), background_(background) {}
-  void start(std::size_t agents, std::size_t frames, bool known) override {
-    CrowdStreamWriter::Shape shape;
-    shape.ids.resize(agents);
-    std::iota(shape.ids.begin(), shape.ids.end(), std::int64_t{0});
-    shape.frames = frames;
-    shape.frames_known = known;
-    shape.background = background_;
-    writer = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
-  }
-  Frame next_frame() override {
-    const CrowdStreamWriter::Frame f = writer->next_frame();
-    return {f.positions, f.orientations, f.actions};
-  }
-  void commit() override { writer->commit_frame(); }
-  std::unique_ptr<CrowdStreamWriter> writer;
-
- private:
-  std::filesystem::path target_;
-  bool background_;
-};
 
 CrowdFile file_of(Run& run) {
   CrowdFile out;
@@ -110,12 +88,13 @@ void BM_SketchCommand(benchmark::State& state) {
       write_crowd_file(out, file, record(run));
       writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count();
     } else {
-      FileSink sink(out, mode == 2);
+      SketchFileSink sink(out, mode == 2);
       Run run = sketch::run({}, job, quiet, Communicator::single(), sink, 0.0);
       agent_steps += run.result.step_count * n;
       const CrowdFile file = file_of(run);
-      sink.writer->finish(file, record(run));
-      writing += sink.writer->seconds_writing();
+      const std::unique_ptr<CrowdStreamWriter> writer = sink.take();
+      writer->finish(file, record(run));
+      writing += writer->seconds_writing();
     }
     total += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -11,6 +11,7 @@
 #include "factories.h"
 
 #include <throng/io/crowd_stream.h>
+#include <throng/io/sketch_stream.h>
 #include <throng/io/sketch_job.h>
 
 #include <memory>
@@ -25,30 +26,6 @@ namespace {
 // 9.3 s without, 18 MB more memory).
 constexpr bool write_in_background = false;
 
-// The command's output file, filled frame by frame.
-class FileSink final : public sketch::FrameSink {
- public:
-  explicit FileSink(std::filesystem::path target) : target_(std::move(target)) {}
-  void start(std::size_t agents, std::size_t frames, bool known) override {
-    CrowdStreamWriter::Shape shape;
-    shape.ids.resize(agents);
-    std::iota(shape.ids.begin(), shape.ids.end(), std::int64_t{0});  // simulate()'s ids
-    shape.frames = frames;
-    shape.frames_known = known;
-    shape.background = write_in_background;
-    writer_ = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
-  }
-  Frame next_frame() override {
-    const CrowdStreamWriter::Frame f = writer_->next_frame();
-    return {f.positions, f.orientations, f.actions};
-  }
-  void commit() override { writer_->commit_frame(); }
-  [[nodiscard]] std::unique_ptr<CrowdStreamWriter> take() { return std::move(writer_); }
-
- private:
-  std::filesystem::path target_;
-  std::unique_ptr<CrowdStreamWriter> writer_;
-};
 
 // The writer of a command's run, from its runner hook to write(); none in a step.
 struct Streamed {
@@ -97,7 +74,7 @@ std::unique_ptr<Command> make_sketch_command() {
         try {
           // A step of `throng run` (no output of its own) and ranks other than the writer keep the crowd in memory.
           if (r.output.empty() || !r.context.writer()) return sketch::run(in, job, r.progress(), r.communicator());
-          FileSink sink(r.output);
+          SketchFileSink sink(r.output, write_in_background);
           const std::size_t agents =
               job.drawing.initial_positions.empty() ? job.options.agent_count : job.drawing.initial_positions.size();
           sketch::Run out = sketch::run(in, job, r.progress(), r.communicator(), sink,

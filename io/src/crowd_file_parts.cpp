@@ -104,6 +104,20 @@ void write_orientation_attributes(const h5::Group& element) {
                                                   "(forward +x, left +y, up +z) into the world; NaN where absent"));
 }
 
+void write_agent_parts(const h5::Group& root, const h5::Group& parameters, const CrowdMotion& motion,
+                       const std::vector<std::array<std::int32_t, 2>>& formation_edges) {
+  if (!formation_edges.empty()) {
+    const h5::Group connectivity = root.create_group("connectivity");
+    std::vector<std::int32_t> edges;
+    for (const auto& e : formation_edges) edges.insert(edges.end(), {e[0], e[1]});
+    connectivity.write("formation_edges", edges, {formation_edges.size(), 2});
+    connectivity.set_reference_attribute_on("formation_edges", "particles_group", "/particles/trajectory");
+  }
+  const h5::Group agents = parameters.create_group("agents");
+  agents.write("id", motion.ids, {motion.ids.size()});
+  agents.write("radius", motion.radii, {motion.radii.size()});
+}
+
 void write_action_attributes(const h5::Group& element, const std::vector<ActionKind>& table) {
   std::vector<std::string> names, props;
   for (const ActionKind& a : table) {

@@ -407,16 +407,7 @@ void CrowdStreamWriter::finish(const CrowdFile& file, const ExtraWriter& extra) 
     if (s.element == "action") detail::write_action_attributes(element, m.action_table);
   }
   trajectory.write("species", m.species, {N});
-  if (!file.formation_edges.empty()) {
-    const h5::Group connectivity = root.create_group("connectivity");
-    std::vector<std::int32_t> edges;
-    for (const auto& e : file.formation_edges) edges.insert(edges.end(), {e[0], e[1]});
-    connectivity.write("formation_edges", edges, {file.formation_edges.size(), 2});
-    connectivity.set_reference_attribute_on("formation_edges", "particles_group", "/particles/trajectory");
-  }
-  const h5::Group agents = parameters.create_group("agents");
-  agents.write("id", m.ids, {N});
-  agents.write("radius", m.radii, {N});
+  detail::write_agent_parts(root, parameters, m, file.formation_edges);
   if (extra) extra(parameters);
 
   for (Stream& s : w.streams) s.set = Handle();

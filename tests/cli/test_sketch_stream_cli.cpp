@@ -8,6 +8,7 @@
 #include <throng/io/crowd_file.h>
 #include <throng/io/crowd_stream.h>
 #include <throng/io/hdf5.h>
+#include <throng/io/sketch_stream.h>
 #include <throng/sketch/runner.h>
 
 #include <catch2/catch.hpp>
@@ -54,30 +55,6 @@ std::string storage_layout(const std::filesystem::path& file) {
   return read_text(text);
 }
 
-// Frames written to a CrowdStreamWriter, as `throng sketch` writes them.
-class WriterSink final : public FrameSink {
- public:
-  WriterSink(std::filesystem::path target, bool background) : target_(std::move(target)), background_(background) {}
-  void start(std::size_t agents, std::size_t frames, bool known) override {
-    CrowdStreamWriter::Shape shape;
-    shape.ids.resize(agents);
-    std::iota(shape.ids.begin(), shape.ids.end(), std::int64_t{0});
-    shape.frames = frames;
-    shape.frames_known = known;
-    shape.background = background_;
-    writer = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
-  }
-  Frame next_frame() override {
-    const CrowdStreamWriter::Frame f = writer->next_frame();
-    return {f.positions, f.orientations, f.actions};
-  }
-  void commit() override { writer->commit_frame(); }
-  std::unique_ptr<CrowdStreamWriter> writer;
-
- private:
-  std::filesystem::path target_;
-  bool background_;
-};
 
 CrowdFile crowd_of(SimulationResult& r, const Scene& scene) {
   CrowdFile f;
@@ -106,13 +83,13 @@ void compare(const scenes::SketchScene& s, const std::string& name, std::size_t 
   }
   {
     const ThreadLimit limit(threads);
-    WriterSink sink(dir / "streamed.h5", background);
+    SketchFileSink sink(dir / "streamed.h5", background);
     NoProgress quiet;
     SimulationResult streamed = simulate(s.drawing, s.scene, s.options, sink, quiet);
     CHECK(streamed.motion.positions.empty());
     CHECK(streamed.motion.orientations.empty());
     CHECK(streamed.motion.actions.empty());
-    sink.writer->finish(crowd_of(streamed, s.scene), record);
+    sink.take()->finish(crowd_of(streamed, s.scene), record);
   }
   INFO(name << " on " << threads << " threads" << (background ? " with a writer thread" : ""));
   CHECK(shell("h5diff " + (dir / "memory.h5").string() + " " + (dir / "streamed.h5").string() + " > " +

@@ -27,6 +27,12 @@ void write_orientation_attributes(const h5::Group& element);
 /// The attributes of the action element `element`: the action table `table` (names, props).
 void write_action_attributes(const h5::Group& element, const std::vector<ActionKind>& table);
 
+/// The crowd file's fixed per-agent parts: /connectivity/formation_edges (when `formation_edges` has any, with
+/// its particles_group reference) and /parameters/throng/agents id and radius (`parameters` is
+/// /parameters/throng).
+void write_agent_parts(const h5::Group& root, const h5::Group& parameters, const CrowdMotion& motion,
+                       const std::vector<std::array<std::int32_t, 2>>& formation_edges);
+
 /// The H5MD box's attributes (dimension, boundary) on `box`, and its offset when the scene's region wraps in x or
 /// y (its edges, a time-dependent element, are the caller's).
 void write_box_attributes(const h5::Group& box, const Scene& scene);
