@@ -420,15 +420,16 @@ TEST_CASE("job errors found only when the job is run still name the file and lin
     CHECK_THAT(message, Contains("--set agents.count=5000: sketch option agent_count = 5000: only"));
   }
   SECTION("frames that cannot fit in memory are refused before the run, naming the keys to change") {
-    write_file(job, small_job("output_rate: 100000\nduration: 100000\n").replace(small_job().find("duration: 6\n"), 12, ""));
+    // 10^14 frames: 16 bytes each (their time and step) are 1.6 PB even written as they go, beyond any machine.
+    write_file(job, small_job("output_rate: 1e7\nduration: 1e7\n").replace(small_job().find("duration: 6\n"), 12, ""));
     CHECK(run("--quiet sketch " + job.string() + " -o " + out.string(), &message) == 2);
-    CHECK_THAT(message, Contains("job.yaml: up to 10000000001 frames (duration 100000 s × output_rate 100000 Hz) of 8 "
-                                 "agents need about 160 GB of memory while written as they go") &&
+    CHECK_THAT(message, Contains("job.yaml: up to 100000000000001 frames (duration 1e+07 s × output_rate 1e+07 Hz) of 8 "
+                                 "agents need about 1.6e+06 GB of memory while written as they go") &&
                             Contains("lower output_rate, duration or agents.count"));
-    CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set output_rate=1e5 --set max_duration=1e5 -o " +
+    CHECK(run("--quiet sketch " + config("sketch-paper.yaml") + " --set output_rate=1e7 --set max_duration=1e7 -o " +
                   out.string(),
               &message) == 2);
-    CHECK_THAT(message, Contains("max_duration 100000 s") && Contains("lower output_rate, max_duration (or set a duration)"));
+    CHECK_THAT(message, Contains("max_duration 1e+07 s") && Contains("lower output_rate, max_duration (or set a duration)"));
   }
   SECTION("values from --set are named as such, and unknown keys are offered only keys sketch takes") {
     write_file(job, small_job());

@@ -37,12 +37,19 @@ TEST_CASE(restart_case) {
   if (std::getenv("THRONG_TEST_HUGE_PAGES_CHILD") != nullptr) {  // the child: restart (once), then report
     std::string program = self, name = restart_case;
     std::array<char*, 3> argv{program.data(), name.data(), nullptr};
+    std::cout << "image-start" << std::endl;  // once per image: twice with one restart
     throng::restart_with_huge_pages(argv.data());
-    const char* tunables = std::getenv("GLIBC_TUNABLES");
-    std::cout << "tunables=" << (tunables ? tunables : "") << "\n";
+    // The environment this image was started with (setenv's changes do not show there): a restart that only
+    // set the variable without re-executing would not pass.
+    std::ifstream environ_file("/proc/self/environ");
+    std::string entry, tunables;
+    while (std::getline(environ_file, entry, '\0')) {
+      if (entry.rfind("GLIBC_TUNABLES=", 0) == 0) tunables = entry.substr(15);
+    }
+    std::cout << "tunables=" << tunables << "\n";
     return;
   }
-  FILE* child = popen(("env -u GLIBC_TUNABLES -u THRONG_HUGE_PAGES THRONG_TEST_HUGE_PAGES_CHILD=1 '" + self + "' '" +
+  FILE* child = popen(("env -u GLIBC_TUNABLES -u THRONG_HUGE_PAGES -u THRONG_HUGE_PAGES_RESTARTED THRONG_TEST_HUGE_PAGES_CHILD=1 '" + self + "' '" +
                        restart_case + "' 2>/dev/null")
                           .c_str(),
                       "r");
@@ -56,4 +63,8 @@ TEST_CASE(restart_case) {
   INFO("kernel mode: " << mode << "child: " << out);
   const bool asks = mode.find("[madvise]") != std::string::npos;
   CHECK(out.find(asks ? "tunables=glibc.malloc.hugetlb=1\n" : "tunables=\n") != std::string::npos);
+  // Started twice with a restart (once without), never more.
+  std::size_t starts = 0;
+  for (auto at = out.find("image-start"); at != std::string::npos; at = out.find("image-start", at + 1)) ++starts;
+  CHECK(starts == (asks ? 2U : 1U));
 }

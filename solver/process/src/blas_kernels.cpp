@@ -31,14 +31,13 @@ const char* better_kernels() {
   return nullptr;
 }
 
-// Whether OpenBLAS's choice `current` is older than `better`: the generic and pre-AVX2 Intel sets are below
-// Haswell; every set but the AVX-512 ones is below SkylakeX (Debian 12's 0.3.21 picks Haswell on the reference
-// machine's AVX-512 Xeon, family 6 model 207, which it does not know; its SkylakeX kernels cut the 300-agent
-// edit precompute 16.3/19.0 s -> 14.8/14.3 s and the flat 1,000-individual formation 1.31 -> 1.02 s, paired).
-// A set this list does not name (a newer release's) is kept.
+// Whether OpenBLAS's choice `current` is older than `better`: the generic and pre-AVX2 sets are below Haswell;
+// every set but the AVX-512 ones is below SkylakeX (blas_kernels.h: why and what it measured). A set this list
+// does not name (a newer release's) is kept.
 bool older_than(const std::string& current, const std::string& better) {
-  static const char* const pre_avx2[] = {"Prescott", "Katmai", "Coppermine", "Northwood", "Banias", "Atom", "Core2",
-                                         "Penryn", "Dunnington", "Nehalem", "Sandybridge"};
+  static const char* const pre_avx2[] = {"Prescott", "Katmai", "Coppermine", "Northwood", "Banias", "Atom",
+                                         "Core2", "Penryn", "Dunnington", "Nehalem", "Sandybridge", "Athlon",
+                                         "Opteron", "Opteron_SSE3", "Barcelona", "Nano", "Bobcat"};
   static const char* const pre_avx512[] = {"Haswell", "Zen", "Excavator", "Steamroller", "Piledriver", "Bulldozer"};
   for (const char* name : pre_avx2) {
     if (current == name) return true;

@@ -1,5 +1,6 @@
 #include <throng/process/huge_pages.h>
 
+#include <sys/auxv.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -8,6 +9,11 @@
 #include <string>
 
 namespace throng {
+namespace {
+
+constexpr const char* restarted_marker = "THRONG_HUGE_PAGES_RESTARTED";
+
+}  // namespace
 
 bool wants_huge_page_restart(const char* tunables, const char* opt_out, std::string_view thp_mode) {
   if (tunables != nullptr) return false;
@@ -16,13 +22,14 @@ bool wants_huge_page_restart(const char* tunables, const char* opt_out, std::str
 }
 
 void restart_with_huge_pages(char** argv) {
+  // Once only, whatever the new image sees: glibc drops GLIBC_TUNABLES from a secure-execution process's
+  // environment (setuid, file capabilities), so that alone could not stop a loop; hence our own marker, and no
+  // restart at all in secure execution.
+  if (argv == nullptr || argv[0] == nullptr || getauxval(AT_SECURE) != 0 || std::getenv(restarted_marker) != nullptr) return;
   std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
   const std::string mode((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  if (argv == nullptr || argv[0] == nullptr ||
-      !wants_huge_page_restart(std::getenv("GLIBC_TUNABLES"), std::getenv("THRONG_HUGE_PAGES"), mode)) {
-    return;
-  }
-  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0) return;
+  if (!wants_huge_page_restart(std::getenv("GLIBC_TUNABLES"), std::getenv("THRONG_HUGE_PAGES"), mode)) return;
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 0) != 0 || setenv(restarted_marker, "1", 1) != 0) return;
   execv("/proc/self/exe", argv);
   // Not re-executed (no /proc, say): go on as we are, with the tunable set for any child we start.
 }

@@ -10,9 +10,11 @@
 // (bench_edit, paired, load 3): minor faults 350,000 -> 40,000, CPU 10.5 -> 9.4 s. Memory layout does not
 // change any result.
 //
-// It does nothing when GLIBC_TUNABLES is already set (the user's or an earlier restart's), when
-// THRONG_HUGE_PAGES=0, when the kernel's mode is not "madvise", or when the program cannot be re-executed
-// (the process then just goes on as it is).
+// It does nothing when GLIBC_TUNABLES is already set (the user's), when THRONG_HUGE_PAGES=0, when the kernel's
+// mode is not "madvise", after its own restart (THRONG_HUGE_PAGES_RESTARTED, set before it), in secure execution
+// (setuid, file capabilities), or when the program cannot be re-executed (the process then just goes on as it
+// is). Run throng under valgrind, or through an explicit loader (ld.so ./throng), with THRONG_HUGE_PAGES=0: the
+// restart re-executes /proc/self/exe.
 #pragma once
 
 #include <string_view>
