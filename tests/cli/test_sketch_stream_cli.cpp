@@ -104,28 +104,8 @@ void compare(const scenes::SketchScene& s, const std::string& name, std::size_t 
   CHECK(a.motion.frame_count() > 0);
 }
 
-// Starts `throng <args>` (cwd `folder`, SIGINT and SIGTERM at their defaults) and returns its process id.
-// `environment`: assignments for the command's environment ("NAME=value ..."), or none.
-pid_t spawn(const std::filesystem::path& folder, const std::string& args, const std::string& environment = "") {
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-  std::string line = "cd " + folder.string() + " && " + environment + (environment.empty() ? "" : " ") + "exec " +
-                     test::command(args) + " >log.txt 2>&1";
-  std::string shell_path = "/bin/sh", dash_c = "-c";
-  char* argv[] = {shell_path.data(), dash_c.data(), line.data(), nullptr};
-  pid_t pid = 0;
-  REQUIRE(posix_spawn(&pid, "/bin/sh", nullptr, &attributes, argv, environ) == 0);
-  posix_spawnattr_destroy(&attributes);
-  return pid;
-}
-
-int exit_status(int status) { return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status); }
+using test::exit_status;
+using test::spawn;
 
 // The temporary file `throng` writes `name` through (atomic_output.h), if there is one.
 std::filesystem::path temporary_of(const std::filesystem::path& folder, const std::string& name) {

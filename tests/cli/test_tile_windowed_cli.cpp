@@ -63,20 +63,7 @@ const char* long_job =
 // `signal` as soon as its first window's resume record is on disk, and returns its exit status (128 + n when a
 // signal ended it, as a shell reports).
 int stop_after_first_window(const std::filesystem::path& folder, int signal) {
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-  std::string line = "cd " + folder.string() + " && exec " + test::command("--quiet tile plaza.yaml -o plaza.h5") + " >log.txt 2>&1";
-  std::string shell_path = "/bin/sh", dash_c = "-c";
-  char* argv[] = {shell_path.data(), dash_c.data(), line.data(), nullptr};
-  pid_t pid = 0;
-  REQUIRE(posix_spawn(&pid, "/bin/sh", nullptr, &attributes, argv, environ) == 0);
-  posix_spawnattr_destroy(&attributes);
+  const pid_t pid = test::spawn(folder, "--quiet tile plaza.yaml -o plaza.h5");
   int status = 0;
   bool ended = false;
   while (!std::filesystem::exists(folder / ".plaza.h5.partial.state") && !ended) {
@@ -87,7 +74,7 @@ int stop_after_first_window(const std::filesystem::path& folder, int signal) {
     kill(pid, signal);
     waitpid(pid, &status, 0);
   }
-  return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
+  return test::exit_status(status);
 }
 
 std::filesystem::path fresh(const std::string& name, const char* job = plaza_job) {
