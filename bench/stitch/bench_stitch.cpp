@@ -1,5 +1,5 @@
 // Stitching at scale (issue 4): two 1,000-agent × 300-frame clips, one joint (the matching, the alignment, the
-// graph and one solve); the exact matching alone; and the paper's town job (configs/run-town.yaml) run end to end
+// graph and one solve); the exact matching alone, 1,000 to 10,000 agents (issue 19); and the paper's town job (configs/run-town.yaml) run end to end
 // by the `throng` program.
 //
 // Arguments of stitch_two: sample_step, blend window in frames of the clips' 0.1 s (0: automatic, the default:
@@ -16,6 +16,8 @@
 // Run:   bench_stitch --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include "two_clips.h"
 
+#include <throng/core/assignment.h>
+#include <throng/stitch/boundary.h>
 #include <throng/stitch/stitch.h>
 
 #include "../common/heap.h"
@@ -69,15 +71,46 @@ void stitch_two(benchmark::State& state) {
 }
 BENCHMARK(stitch_two)->Args({8, 0})->Args({1, 30})->Args({1, 49})->Args({1, 0})->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-void matching_1000(benchmark::State& state) {
-  const CrowdMotion& g = clips().first;
-  const CrowdMotion& h = clips().second;
-  stitch::Points last(static_cast<Eigen::Index>(g.agent_count()), 2), first(static_cast<Eigen::Index>(h.agent_count()), 2);
-  for (std::size_t a = 0; a < g.agent_count(); ++a) last.row(static_cast<Eigen::Index>(a)) = g.position(g.frame_count() - 1, a).head<2>().transpose();
-  for (std::size_t a = 0; a < h.agent_count(); ++a) first.row(static_cast<Eigen::Index>(a)) = h.position(0, a).head<2>().transpose();
-  for (auto _ : state) benchmark::DoNotOptimize(stitch::match_boundary(last, first, stitch::Matching::centred).total_distance);
+// The boundary matching alone at N agents (two_clips(25, N / 25)'s G last frame against G′'s first), world: as
+// placed, 35 m apart and stretched (the paper's round, the hardest), centred: both moved to their centroids.
+// planar_*: assign_planar (what stitch runs); dense_*: the O(n³) dense solver over the n × n distances (what it
+// ran before; 1,000 and 2,000 only).
+struct BoundaryFrames {
+  stitch::Points last, first;
+};
+
+BoundaryFrames boundary_frames(int agents) {
+  const bench::TwoClips k = bench::two_clips(25, agents / 25, 300);
+  BoundaryFrames b{stitch::Points(agents, 2), stitch::Points(agents, 2)};
+  for (int a = 0; a < agents; ++a) {
+    b.last.row(a) = k.first.position(k.first.frame_count() - 1, static_cast<std::size_t>(a)).head<2>().transpose();
+    b.first.row(a) = k.second.position(0, static_cast<std::size_t>(a)).head<2>().transpose();
+  }
+  return b;
 }
-BENCHMARK(matching_1000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void planar_matching(benchmark::State& state, stitch::Matching matching) {
+  const BoundaryFrames b = boundary_frames(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(stitch::match_boundary(b.last, b.first, matching).total_distance);
+}
+void dense_matching(benchmark::State& state, stitch::Matching matching) {
+  const BoundaryFrames b = boundary_frames(static_cast<int>(state.range(0)));
+  const Eigen::RowVector2d shift = matching == stitch::Matching::centred
+                                       ? Eigen::RowVector2d(b.first.colwise().mean() - b.last.colwise().mean())
+                                       : Eigen::RowVector2d::Zero();
+  for (auto _ : state) {
+    Eigen::MatrixXd cost(b.last.rows(), b.first.rows());
+    for (Eigen::Index i = 0; i < b.last.rows(); ++i)
+      for (Eigen::Index k = 0; k < b.first.rows(); ++k) cost(i, k) = (b.last.row(i) + shift - b.first.row(k)).norm();
+    benchmark::DoNotOptimize(solve_assignment(cost).cost);
+  }
+}
+BENCHMARK_CAPTURE(planar_matching, world, stitch::Matching::world)
+    ->Arg(1000)->Arg(2000)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(planar_matching, centred, stitch::Matching::centred)
+    ->Arg(1000)->Arg(2000)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(dense_matching, world, stitch::Matching::world)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(dense_matching, centred, stitch::Matching::centred)->Arg(1000)->Arg(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The town job as a user runs it: the `throng` program in a scratch folder, the job's paths made absolute.
 void town_job(benchmark::State& state) {

@@ -1,5 +1,7 @@
-#include <throng/core/assignment.h>
+#include <throng/core/planar_assignment.h>
+#include <throng/core/planar_index.h>
 #include <throng/core/errors.h>
+#include <throng/core/parallel.h>
 #include <throng/stitch/boundary.h>
 
 #include <Eigen/Eigenvalues>
@@ -48,6 +50,23 @@ double summed_distance(const Eigen::Ref<const Points>& to, const Points& from, c
 
 }  // namespace
 
+namespace {
+
+// The exact matching of two point sets (same count), started from `state` when given (see assign_planar).
+Correspondence matching_of(const Eigen::Ref<const Points>& a, const Eigen::Ref<const Points>& b,
+                           PlanarAssignmentState* state) {
+  const Assignment assignment = assign_planar(a, b, "stitch matching", state);
+  Correspondence c;
+  c.total_distance = assignment.cost;
+  c.second_of_first.resize(static_cast<std::size_t>(a.rows()));
+  for (Index i = 0; i < a.rows(); ++i) {
+    c.second_of_first[static_cast<std::size_t>(i)] = static_cast<std::size_t>(assignment.column_of_row[static_cast<std::size_t>(i)]);
+  }
+  return c;
+}
+
+}  // namespace
+
 Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first, const Eigen::Ref<const Points>& first_of_second,
                               Matching matching) {
   const Index n = last_of_first.rows();
@@ -59,19 +78,7 @@ Correspondence match_boundary(const Eigen::Ref<const Points>& last_of_first, con
     shift_a = last_of_first.colwise().mean();
     shift_b = first_of_second.colwise().mean();
   }
-  Eigen::MatrixXd cost(n, n);
-  for (Index i = 0; i < n; ++i) {
-    const Eigen::RowVector2d a = last_of_first.row(i) - shift_a;
-    for (Index k = 0; k < n; ++k) cost(i, k) = (a - (first_of_second.row(k) - shift_b)).norm();
-  }
-  const Assignment assignment = solve_assignment(cost, "stitch matching cost");
-  Correspondence c;
-  c.total_distance = assignment.cost;
-  c.second_of_first.resize(static_cast<std::size_t>(n));
-  for (Index i = 0; i < n; ++i) {
-    c.second_of_first[static_cast<std::size_t>(i)] = static_cast<std::size_t>(assignment.column_of_row[static_cast<std::size_t>(i)]);
-  }
-  return c;
+  return matching_of(last_of_first.rowwise() - shift_a, first_of_second.rowwise() - shift_b, nullptr);
 }
 
 Eigen::Isometry2d align(const Eigen::Ref<const Points>& from, const Eigen::Ref<const Points>& to, Alignment alignment) {
@@ -93,7 +100,7 @@ namespace {
 
 // From the start `m`: pair each point of `to` with its nearest point of m·from (not a matching: a point may be
 // chosen twice), align those pairs, repeat until the pairs repeat or the summed distance stops falling. A cheap
-// iteration, O(n²) a round against the assignment's O(n³).
+// iteration, O(n log n) a round (a k-d tree of `from`).
 struct NearestFit {
   double score = std::numeric_limits<double>::infinity();  // least summed distance reached
   Eigen::Isometry2d alignment = Eigen::Isometry2d::Identity();  // where it was reached
@@ -102,19 +109,15 @@ struct NearestFit {
 NearestFit nearest_fit(const Eigen::Ref<const Points>& to, const Eigen::Ref<const Points>& from, Eigen::Isometry2d m,
                        Alignment alignment) {
   const Index n = to.rows();
+  const PlanarIndex index(from);  // m is rigid: the nearest m·from of a point is m·(the nearest from of m⁻¹·point)
   std::vector<Index> nearest(static_cast<std::size_t>(n)), previous_pairs;
-  Points moved(n, 2), paired(n, 2);
+  Points paired(n, 2);
   NearestFit best;
   double previous = best.score;
   for (int round = 0; round < max_rounds; ++round) {
-    for (Index k = 0; k < n; ++k) moved.row(k) = (m * Eigen::Vector2d(from.row(k).transpose())).transpose();
+    const Eigen::Isometry2d back = m.inverse(Eigen::Isometry);
     for (Index i = 0; i < n; ++i) {
-      Index at = 0;
-      double d_best = std::numeric_limits<double>::infinity();
-      for (Index k = 0; k < n; ++k) {
-        const double d = (to.row(i) - moved.row(k)).squaredNorm();
-        if (d < d_best) d_best = d, at = k;
-      }
+      const auto at = static_cast<Index>(index.nearest(back * Eigen::Vector2d(to.row(i).transpose())));
       nearest[static_cast<std::size_t>(i)] = at;
       paired.row(i) = from.row(at);
     }
@@ -229,36 +232,43 @@ BoundaryFit fit_boundary(const Eigen::Ref<const Points>& last_of_first, const Ei
     }
   }
 
-  // Each run's best fit; then the choice between them.
+  // Each run's best fit, the runs side by side (each its own matchings, so the fits are the same whatever the
+  // thread count: the paper's round, far apart in the option's frame, is the slowest matching, and the refined
+  // runs go on beside it); then the choice between them.
   std::vector<BoundaryFit> runs(exact.size());
   std::vector<double> run_cost(exact.size(), std::numeric_limits<double>::infinity()), run_cont(exact.size(), 0.0);
-  Points matched(n, 2), moved(n, 2);
-  for (std::size_t s = 0; s < exact.size(); ++s) {
-    Eigen::Isometry2d m = exact[s];
-    std::set<std::vector<std::size_t>> refined;  // matchings this run has aligned: a repeat ends it
-    double& best = run_cost[s];
-    BoundaryFit& fit_s = runs[s];
-    double previous = std::numeric_limits<double>::infinity();
-    for (int round = 0; round < exact_rounds[s]; ++round) {
-      for (Index i = 0; i < n; ++i) moved.row(i) = (m * Eigen::Vector2d(first_of_second.row(i).transpose())).transpose();
-      Correspondence c = match_boundary(last_of_first, moved, Matching::world);
-      ++fit.rounds;
-      if (!refined.insert(c.second_of_first).second) break;
-      for (Index i = 0; i < n; ++i) matched.row(i) = first_of_second.row(static_cast<Index>(c.second_of_first[static_cast<std::size_t>(i)]));
-      m = align(matched, last_of_first, alignment);
-      const double cost = summed_distance(last_of_first, matched, m);
-      c.total_distance = cost;
-      if (cost < best * (1 - better_than_earlier)) {
-        best = cost;
-        fit_s.correspondence = std::move(c);
-        fit_s.alignment = m;
-        fit_s.start_rotation = exact_angle[s];
-        run_cont[s] = continuity(m);
+  std::vector<std::size_t> run_rounds(exact.size(), 0);
+  parallel_for(exact.size(), 1, [&](std::size_t begin, std::size_t end) {
+    Points matched(n, 2), moved(n, 2);
+    for (std::size_t s = begin; s < end; ++s) {
+      PlanarAssignmentState state;  // each matching of the run starts from the one before (the agents moved a little)
+      Eigen::Isometry2d m = exact[s];
+      std::set<std::vector<std::size_t>> refined;  // matchings this run has aligned: a repeat ends it
+      double& best = run_cost[s];
+      BoundaryFit& fit_s = runs[s];
+      double previous = std::numeric_limits<double>::infinity();
+      for (int round = 0; round < exact_rounds[s]; ++round) {
+        for (Index i = 0; i < n; ++i) moved.row(i) = (m * Eigen::Vector2d(first_of_second.row(i).transpose())).transpose();
+        Correspondence c = matching_of(last_of_first, moved, &state);
+        ++run_rounds[s];
+        if (!refined.insert(c.second_of_first).second) break;
+        for (Index i = 0; i < n; ++i) matched.row(i) = first_of_second.row(static_cast<Index>(c.second_of_first[static_cast<std::size_t>(i)]));
+        m = align(matched, last_of_first, alignment);
+        const double cost = summed_distance(last_of_first, matched, m);
+        c.total_distance = cost;
+        if (cost < best * (1 - better_than_earlier)) {
+          best = cost;
+          fit_s.correspondence = std::move(c);
+          fit_s.alignment = m;
+          fit_s.start_rotation = exact_angle[s];
+          run_cont[s] = continuity(m);
+        }
+        if (!(cost < previous * (1 - falling))) break;
+        previous = cost;
       }
-      if (!(cost < previous * (1 - falling))) break;
-      previous = cost;
     }
-  }
+  });
+  for (std::size_t r : run_rounds) fit.rounds += r;
   const std::size_t chosen = least(run_cost, forward(run_cont));
   runs[chosen].starts = fit.starts;
   runs[chosen].rounds = fit.rounds;

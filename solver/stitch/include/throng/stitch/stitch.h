@@ -4,7 +4,7 @@
 //
 // Method.
 //  1. Correspondence: the minimum-total-distance matching between G's last frame and G′'s first frame (exact:
-//     throng/core/assignment.h, Hungarian / Jonker–Volgenant).
+//     throng/core/planar_assignment.h, Jonker–Volgenant over nearest-neighbour candidates with a dual certificate).
 //  2. Alignment: the rotation and translation (no scale) taking G′'s first frame onto G's last frame in least
 //     squares (Eigen::umeyama without scaling), applied to all of G′. Steps 1 and 2 are iterated (re-matching in
 //     the aligned frame) from a few start rotations, so a G′ turned by any angle is put back
