@@ -105,7 +105,7 @@ TEST_CASE("planar assignment finds a turned and shuffled copy exactly and handle
 
 TEST_CASE("planar assignment started from a subsample reaches the least total on stretched lattices apart") {
   // The path the stitch takes from 2,000 agents on, here from 100 points so that the dense solver checks it
-  // quickly: 800 → 400 → 200 → 100 points, three subsample levels.
+  // quickly: 800 → 400 → 200 → 100 → 50 points, four subsample levels.
   PlanarPoints a(800, 2), b(800, 2);
   throng::Rng rng(37);
   for (int i = 0; i < 800; ++i) {
@@ -118,16 +118,19 @@ TEST_CASE("planar assignment started from a subsample reaches the least total on
 }
 
 TEST_CASE("planar assignment started from the previous call's state reaches the same least totals") {
-  // The stitch's rounds: the same rows against columns turned a little further each call.
+  // The stitch's rounds: the same rows against columns turned a little further about their centre each call
+  // (the farthest moves 0.1 m a round, under the 0.5 m spacing: each call after the first starts from the state).
   throng::Rng rng(43);
   const PlanarPoints a = scattered(rng, 600, 25), b = scattered(rng, 600, 25, {3, 1});
+  const Eigen::RowVector2d centre = b.colwise().mean();
   throng::PlanarAssignmentState state;
   for (int round = 0; round < 4; ++round) {
     INFO("round " << round);
-    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.02 * round).toRotationMatrix();
-    const PlanarPoints moved = b * turn.transpose();
+    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(0.005 * round).toRotationMatrix();
+    const PlanarPoints moved = ((b.rowwise() - centre) * turn.transpose()).rowwise() + centre;
     const throng::Assignment resumed = throng::assign_planar(a, moved, "points", &state);
     CHECK(state.column_of_row == resumed.column_of_row);
+    CHECK(state.resumed == (round > 0));
     CHECK(resumed.cost == Catch::Detail::Approx(throng::assign_planar(a, moved).cost).epsilon(1e-12).margin(1e-9));
     CHECK(resumed.cost == Catch::Detail::Approx(throng::solve_assignment(distances(a, moved)).cost).epsilon(1e-12).margin(1e-9));
   }
@@ -135,7 +138,12 @@ TEST_CASE("planar assignment started from the previous call's state reaches the 
     throng::PlanarAssignmentState broken = state;
     broken.column_of_row[0] = broken.column_of_row[1];
     CHECK(throng::assign_planar(a, b, "points", &broken).cost == Catch::Detail::Approx(throng::assign_planar(a, b).cost));
+    CHECK_FALSE(broken.resumed);
     CHECK(broken.column_of_row != state.column_of_row);  // replaced by this call's
+    throng::PlanarAssignmentState far = state;
+    const PlanarPoints shifted = b.rowwise() + Eigen::RowVector2d(5, 0);  // every point moved 5 m: afresh
+    CHECK(throng::assign_planar(a, shifted, "points", &far).cost == Catch::Detail::Approx(throng::assign_planar(a, shifted).cost));
+    CHECK_FALSE(far.resumed);
     const PlanarPoints fewer = a.topRows(100);
     CHECK(throng::assign_planar(fewer, b.topRows(100), "points", &state).column_of_row.size() == 100);
     CHECK(state.column_of_row.size() == 100);

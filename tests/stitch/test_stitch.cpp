@@ -254,6 +254,30 @@ TEST_CASE("the boundary fit recovers a clip turned by any angle, where one match
   }
 }
 
+TEST_CASE("the boundary fit is the same whatever the thread count") {
+  // Its runs (the paper's round, each refined start) go side by side: each must be its own.
+  Rng rng(19);
+  const Eigen::Index n = 400;
+  Points a(n, 2), b(n, 2);
+  for (Eigen::Index i = 0; i < n; ++i) a.row(i) << rng.uniform(-20, 20), rng.uniform(-5, 5);
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(2.0).toRotationMatrix();
+  for (Eigen::Index i = 0; i < n; ++i) b.row(i) = (turn * Eigen::Vector2d(a.row(i).transpose()) + Eigen::Vector2d(30, 4 + rng.uniform(0, 0.3))).transpose();
+  BoundaryFit one, two;
+  {
+    ThreadLimit limit(1);
+    one = fit_boundary(a, b, Headings{}, Matching::world, Alignment::rigid);
+  }
+  {
+    ThreadLimit limit(2);
+    two = fit_boundary(a, b, Headings{}, Matching::world, Alignment::rigid);
+  }
+  CHECK(one.starts >= 3);
+  CHECK(one.correspondence.second_of_first == two.correspondence.second_of_first);
+  CHECK(one.correspondence.total_distance == two.correspondence.total_distance);
+  CHECK(one.alignment.matrix() == two.alignment.matrix());
+  CHECK(one.rounds == two.rounds);
+}
+
 TEST_CASE("of fits as close as each other, the boundary fit keeps the group walking forward") {
   // A 4 × 5 block is the same set of points turned by 180°: G′ = the block walking −x fits G (walking +x) as well
   // as placed (every agent onto the one at its place) as turned around (every agent onto its mirror image).

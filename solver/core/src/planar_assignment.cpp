@@ -57,7 +57,8 @@ Transport gaussian_transport(const PlanarPoints& rows, const PlanarPoints& cols)
 }
 
 // Shortest augmenting paths over a sparse candidate graph. State between searches (Jonker–Volgenant):
-//   v        column potentials (they start at each column's nearest distance and only fall);
+//   v        column potentials (from the column reduction, a subsample's or a previous call's; searches only
+//            lower them);
 //   paired rows: c(i, col_of[i]) − v[col_of[i]] = min over the row's candidates k of c(i, k) − v[k] (tight), so
 //            every candidate's reduced cost c(i, k) − u_i − v_k is ≥ 0 with u_i the row's own;
 //   free rows: no condition (a row whose candidates grow past its pairing is freed).
@@ -141,6 +142,7 @@ class SparseAssignment {
       }
     }
     started_ = true;
+    resumed_ = true;
   }
 
   // This call's state, for the next.
@@ -150,6 +152,7 @@ class SparseAssignment {
     state.column_of_row = col_of_;
     state.rows = a_;
     state.cols = b_;
+    state.resumed = resumed_;
   }
 
   // The median distance from a column to its nearest other column (0 for one column).
@@ -212,7 +215,7 @@ class SparseAssignment {
     return free_rows;
   }
 
-  // Pairs every row of `pending` (and every row freed on the way), in order.
+  // Pairs every row of `pending`, in order.
   void pair_all(const std::vector<int>& pending) {
     std::vector<int> free_columns;
     for (int r : pending) {
@@ -348,6 +351,7 @@ class SparseAssignment {
   double tolerance_ = 0;
   bool started_ = false;        // start_from or resume was called
   std::vector<int> start_free_;  // then, the rows they left free
+  bool resumed_ = false;         // resume was called
   // One search's workspace, reset after it (only the entries it touched).
   std::vector<double> distance_;
   std::vector<int> predecessor_;

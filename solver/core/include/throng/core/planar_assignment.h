@@ -16,7 +16,7 @@ namespace throng {
 /// paired. Throws InputError naming `what` when the counts differ or a coordinate is not finite.
 ///
 /// Algorithm: shortest augmenting paths with dual potentials (Jonker–Volgenant: column reduction, then one
-/// Dijkstra search a free row) over a sparse candidate graph: each row's 8 nearest columns and each column's 8
+/// Dijkstra search per free row) over a sparse candidate graph: each row's 8 nearest columns and each column's 8
 /// nearest rows (k-d trees), as placed and through the optimal transport map between the two sets' Gaussian fits
 /// (so that sets lying apart or stretched one against the other still meet their partners); a row whose search
 /// reaches no free column gains the free column of least reduced cost. Then the dual certificate over all n²
@@ -26,7 +26,8 @@ namespace throng {
 /// instead from the potentials of a half subsample's optimum (found the same way), with each row's 96 columns of
 /// least reduced cost under them as candidates: where very many pairings cost nearly the same, the
 /// optimum's pairs lie far outside any geometric neighbourhood.
-/// Cost: memory O(n) times the candidates a row has (about 100); time grows with how far the optimum lies from the candidates. Sets
+/// Cost: memory O(n) times the candidates a row has (about 100; a state carried over many calls keeps the
+/// candidates of all of them); time grows with how far the optimum lies from the candidates. Sets
 /// that overlap take a few rounds; stretched lattices apart, tens (two 10,000-point lattices 35 m apart: 7.2 s on
 /// 2 cores; two 5,000-point ones 5.3 s).
 /// Deterministic: rows are paired in index order, ties in the searches go to the lowest column index, the
@@ -47,6 +48,7 @@ struct PlanarAssignmentState {
   std::vector<std::vector<int>> candidates;      ///< per row: candidate columns, increasing
   std::vector<int> column_of_row;                ///< the pairing
   PlanarPoints rows, cols;                       ///< the points it was found for
+  bool resumed = false;                          ///< whether that call started from the state before it
 };
 [[nodiscard]] Assignment assign_planar(const Eigen::Ref<const PlanarPoints>& rows,
                                        const Eigen::Ref<const PlanarPoints>& cols, const char* what = "points",

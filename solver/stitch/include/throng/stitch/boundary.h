@@ -16,7 +16,8 @@
 //        and that plus 180° (an axis has no sign), when both frames are spread out (not at one point).
 //    A start within 10° of an earlier one is skipped (both lead to the same fit).
 //  * Screening: from each start, the same iteration with nearest neighbours in place of the matching (a point may
-//    be chosen twice; a k-d tree, O(n log n) a round), to convergence. The screened fits within 25 % of the best screen score
+//    be chosen twice; a k-d tree, O(n log n) a round; among equally near points the tree's order decides, the same
+//    on every run), to convergence. The screened fits within 25 % of the best screen score
 //    (the screen is only a proxy of the matching's distance), one per rotation (10°), are refined exactly; so
 //    is the paper's single matching and alignment in the option's own frame (one round).
 //  * Refinement: at most 30 rounds of match (world distances, in the current aligned frame) then align; stop
