@@ -3,9 +3,10 @@
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
 
-#include <zlib.h>
+#include <libdeflate.h>
 
 #include <algorithm>
+#include <memory>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -38,11 +39,18 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   for (std::uint64_t first = 0; first < chunks; first += batch_chunks) {
     const std::uint64_t count = std::min(batch_chunks, chunks - first);
     std::vector<std::vector<unsigned char>> packed(count);
-    std::vector<int> status(count, Z_OK);
+    std::vector<char> failed(count, 0);
     parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
+      // One compressor per task (its match finder's tables, about 0.3 MB), freed on every path out.
+      const std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
+          libdeflate_alloc_compressor(layout.level), &libdeflate_free_compressor);
       std::vector<unsigned char> padded, shuffled(layout.element_size > 1 ? chunk_bytes : 0);
-      std::vector<unsigned char> out(compressBound(static_cast<uLong>(chunk_bytes)));
+      std::vector<unsigned char> out(compressor ? libdeflate_zlib_compress_bound(compressor.get(), chunk_bytes) : 0);
       for (std::size_t k = begin; k < end; ++k) {
+        if (!compressor) {
+          failed[k] = 1;
+          continue;
+        }
         const std::uint64_t row0 = (first + k) * layout.chunk_rows;
         const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
         const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
@@ -56,13 +64,13 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
           shuffle(chunk, chunk_bytes, layout.element_size, shuffled.data());
           chunk = shuffled.data();
         }
-        uLongf size = static_cast<uLongf>(out.size());
-        status[k] = compress2(out.data(), &size, chunk, static_cast<uLong>(chunk_bytes), layout.level);
-        if (status[k] == Z_OK) packed[k].assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(size));
+        const std::size_t size = libdeflate_zlib_compress(compressor.get(), chunk, chunk_bytes, out.data(), out.size());
+        if (size == 0) failed[k] = 1;  // cannot happen within the bound; a failure, not an empty chunk
+        else packed[k].assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(size));
       }
     });
     for (std::uint64_t k = 0; k < count; ++k) {
-      if (status[k] != Z_OK) throw IoError("cannot write " + where + ": zlib failed to compress a chunk (status " + std::to_string(status[k]) + ")");
+      if (failed[k]) throw IoError("cannot write " + where + ": libdeflate could not compress chunk " + std::to_string(first + k) + " (out of memory?)");
       write((first + k) * layout.chunk_rows, packed[k]);
     }
   }
