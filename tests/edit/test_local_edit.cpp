@@ -347,17 +347,28 @@ TEST_CASE("the step across the region's edge is measured against the input, and 
   CHECK_FALSE(nudge.is_jump());
 }
 
-TEST_CASE("parts by size: vertices / vertices_per_part parts, and a size out of range is a ConfigError") {
+TEST_CASE("parts by size: blocks of samples times groups of agents, and a size out of range is a ConfigError") {
   const CrowdMotion crowd = scene();
   const Request request = corner_drag({1.5, -0.8});
   Options o = local_options(LocalOptions::by_size, 0);
-  o.local.vertices_per_part = 300;  // 1,488 vertices: 5 parts
+  o.local.vertices_per_part = 300;  // 1,488 vertices: about 5 parts
   LocalEditor local(crowd, o, request);
-  CHECK(local.partition().part_count() == 5);
-  CHECK(local.report().parts == 5);
-  // The same parts as asking for 5 by count: the same edit, bit for bit.
-  LocalEditor counted(crowd, local_options(5, 0), request);
-  CHECK(local.deform(request) == counted.deform(request));
+  // The parts of partition_time_blocks (tested in tests/graph/test_block_partition.cpp), not of METIS on the
+  // whole graph as a count asks.
+  const Partition blocks = partition_time_blocks(local.graph(), 300, {.seed = o.local.seed});
+  CHECK(local.partition().part_of == blocks.part_of);
+  CHECK(local.report().parts == blocks.part_count());
+  CHECK(blocks.part_count() >= 3);
+  CHECK(blocks.part_count() <= 8);
+  // Those parts, given to the region solve, edit as any partition does: held vertices stay bit for bit.
+  const auto& edited = local.deform(request);
+  const std::vector<int>& region = local.region();
+  REQUIRE_FALSE(region.empty());
+  REQUIRE(region.size() < local.graph().vertex_count());
+  for (std::size_t v = 0; v < local.graph().vertex_count(); ++v) {
+    if (std::binary_search(region.begin(), region.end(), static_cast<int>(v))) continue;
+    REQUIRE(edited.row(static_cast<Eigen::Index>(v)) == local.graph().clip.positions.row(static_cast<Eigen::Index>(v)));
+  }
   // Larger than the graph: one part, the global edit.
   o.local.vertices_per_part = 1000000;
   LocalEditor one(crowd, o, request);

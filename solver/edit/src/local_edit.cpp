@@ -111,12 +111,6 @@ void local_basis(const ResolvedRequest& resolved, const std::vector<Index>& hand
   basis.makeCompressed();
 }
 
-// Parts of about `per_part` vertices each (LocalOptions::by_size), at least one.
-int parts_by_size(std::size_t vertices, int per_part) {
-  const auto per = static_cast<std::size_t>(per_part);
-  return static_cast<int>(std::max<std::size_t>(1, (vertices + per / 2) / per));
-}
-
 }  // namespace
 
 struct LocalEditor::State {
@@ -360,16 +354,18 @@ LocalEditor::LocalEditor(const CrowdMotion& crowd, const Options& options, const
   s.result = s.current;
   const std::size_t vertices = s.graph.vertex_count();
   const bool by_size = options.local.parts == LocalOptions::by_size;
-  const int parts = by_size ? parts_by_size(vertices, options.local.vertices_per_part) : options.local.parts;
-  if (static_cast<std::size_t>(parts) > vertices) {
-    throw ConfigError("local.parts " + std::to_string(parts) + ": the clip's graph has only " + std::to_string(vertices) +
-                      " vertices");
+  if (!by_size && static_cast<std::size_t>(options.local.parts) > vertices) {
+    throw ConfigError("local.parts " + std::to_string(options.local.parts) + ": the clip's graph has only " +
+                      std::to_string(vertices) + " vertices");
   }
   (void)resolve(request, s.graph.clip, s.crowd_ids);  // fail early on a request that does not fit
   Report& r = s.report;
   r.graph_seconds = seconds_since(start);
   const auto partition_start = Clock::now();
-  s.partition = partition_graph(space_time_adjacency(s.graph), {.parts = parts, .seed = options.local.seed});
+  // By size: blocks of samples × groups of agents (partition_time_blocks: linear in the samples, parts whose
+  // extent does not depend on the crowd's size); by count: METIS on the whole space-time graph.
+  s.partition = by_size ? partition_time_blocks(s.graph, options.local.vertices_per_part, {.seed = options.local.seed})
+                        : partition_graph(space_time_adjacency(s.graph), {.parts = options.local.parts, .seed = options.local.seed});
   r.partition_seconds = seconds_since(partition_start);
   s.local_of.assign(vertices, -1);
   s.inside_mark.assign(vertices, 0);

@@ -301,26 +301,48 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     std::size_t order = 0;  // its place in request order
     Parametrisation q;
   };
+  // Who placed a handle: pins[k] or drags[k], as text only in a message (a request that pins 20,000 vertices
+  // would otherwise build 60,000 strings on every drag).
+  struct Source {
+    const char* list = "";
+    std::size_t index = 0;
+    [[nodiscard]] std::string text() const { return std::string(list) + "[" + std::to_string(index) + "]"; }
+    [[nodiscard]] bool operator==(const Source& o) const { return list == o.list && index == o.index; }
+  };
   std::vector<Placement> placements;
-  std::vector<std::string> sources;  // "pins[k]" / "drags[k]"
+  std::vector<Source> sources;
   std::vector<double> coordinates;
   Parametrisation current;
-  auto place = [&](std::size_t sample, std::size_t agent_index, const Eigen::Vector2d& target, const std::string& who) {
-    if (!target.allFinite()) throw ConfigError(who + ": target position " + point(target) + " is not finite");
-    if (sources.empty() || sources.back() != who) sources.push_back(who);
+  auto place = [&](std::size_t sample, std::size_t agent_index, const Eigen::Vector2d& target, const Source& who) {
+    if (!target.allFinite()) throw ConfigError(who.text() + ": target position " + point(target) + " is not finite");
+    if (sources.empty() || !(sources.back() == who)) sources.push_back(who);
     Parametrisation mine = current;
     mine.p = original(clip, sample, agent_index);
     placements.push_back({clip.vertex(sample, agent_index), target, sources.size() - 1, placements.size(), mine});
   };
+  // Agent ids to clip columns: by bisection when the ids increase (a request that pins every agent would
+  // otherwise scan the ids once per pin, 10^8 comparisons at 10,000 agents), else Clip::agent_of_id's scan.
+  const bool ids_increase = std::is_sorted(clip.ids.begin(), clip.ids.end());
+  auto column_of = [&](std::int64_t id) -> long {
+    if (!ids_increase) return clip.agent_of_id(id);
+    const auto it = std::lower_bound(clip.ids.begin(), clip.ids.end(), id);
+    return it != clip.ids.end() && *it == id ? static_cast<long>(it - clip.ids.begin()) : -1;
+  };
   for (std::size_t k = 0; k < request.pins.size(); ++k) {
     const Pin& p = request.pins[k];
-    const std::string where = "pins[" + std::to_string(k) + "]";
-    const std::size_t j = agent(clip, crowd_ids, p.agent, where + ".agent");
-    const std::size_t s = sample_at(clip, p.frame, where + ".frame");
+    const Source who{"pins", k};
+    // A known agent at a sample of the clip without any text; agent() and sample_at() say what is wrong otherwise.
+    const long known = column_of(p.agent);
+    const std::size_t j = known >= 0 ? static_cast<std::size_t>(known) : agent(clip, crowd_ids, p.agent, who.text() + ".agent");
+    const long frame = p.frame < 0 ? static_cast<long>(clip.last_frame) + 1 + p.frame : p.frame;
+    const long sample = frame >= static_cast<long>(clip.first_frame) && frame <= static_cast<long>(clip.last_frame)
+                            ? clip.sample_of_frame(static_cast<std::size_t>(frame))
+                            : -1;
+    const std::size_t s = sample >= 0 ? static_cast<std::size_t>(sample) : sample_at(clip, p.frame, who.text() + ".frame");
     const Eigen::Vector2d at = p.position.value_or(original(clip, s, j));
     current = {static_cast<Index>(coordinates.size()), false, {0, 0}};
     coordinates.insert(coordinates.end(), {at.x(), at.y()});
-    place(s, j, at, where);
+    place(s, j, at, who);
   }
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& d = request.drags[k];
@@ -348,7 +370,8 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
       for (std::size_t j : agents) {
         // Without rotation the target is exactly original + offset (no round trip through the pivot).
         const Eigen::Vector2d p = original(clip, s, j);
-        place(s, j, d.rotation == 0.0 ? Eigen::Vector2d(p + d.offset) : Eigen::Vector2d(pivot + turn * (p - pivot) + d.offset), where);
+        place(s, j, d.rotation == 0.0 ? Eigen::Vector2d(p + d.offset) : Eigen::Vector2d(pivot + turn * (p - pivot) + d.offset),
+              Source{"drags", k});
       }
     }
   }
@@ -376,7 +399,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     const auto agents = static_cast<Index>(clip.agent_count());
     const auto sample = static_cast<std::size_t>(clash->v / agents);
     const auto agent_index = static_cast<std::size_t>(clash->v % agents);
-    throw NumericalError("contradictory handles: " + sources[clashed->who] + " and " + sources[clash->who] +
+    throw NumericalError("contradictory handles: " + sources[clashed->who].text() + " and " + sources[clash->who].text() +
                          " both place agent " + std::to_string(clip.ids[agent_index]) + " at frame " +
                          std::to_string(clip.frames[sample]) + ", at " + point(clashed->target) + " and " + point(clash->target));
   }

@@ -1,11 +1,14 @@
 #include <throng/core/errors.h>
 #include <throng/graph/partition.h>
 
+#include "metis_parts.h"
+
 #include <metis.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -133,6 +136,18 @@ Partition partition_graph(const AdjacencyGraph& graph, const PartitionOptions& o
   if (!(options.imbalance > 1.0 && options.imbalance <= 10.0)) {
     throw ConfigError("partition imbalance " + std::to_string(options.imbalance) + ": expected (1, 10]");
   }
+  return make_partition(graph, detail::metis_parts(graph, {}, options, detail::MetisMethod::kway));
+}
+
+namespace detail {
+
+std::vector<int> metis_parts(const AdjacencyGraph& graph, std::span<const int> edge_weights, const PartitionOptions& options,
+                             MetisMethod method) {
+  const std::size_t vertices = graph.vertex_count();
+  if (!edge_weights.empty() && edge_weights.size() != graph.neighbours.size()) {
+    throw std::invalid_argument("metis_parts: " + std::to_string(edge_weights.size()) + " edge weights for " +
+                                std::to_string(graph.neighbours.size()) + " neighbour entries");
+  }
   std::vector<int> labels(vertices, 0);
   if (options.parts > 1) {
     idx_t nvtxs = static_cast<idx_t>(vertices), ncon = 1, nparts = options.parts, objval = 0;
@@ -144,15 +159,23 @@ Partition partition_graph(const AdjacencyGraph& graph, const PartitionOptions& o
     // METIS takes non-const pointers but does not write the graph.
     auto* xadj = const_cast<idx_t*>(graph.offsets.data());
     auto* adjncy = const_cast<idx_t*>(graph.neighbours.data());
-    const int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj, adjncy, nullptr, nullptr, nullptr, &nparts, nullptr,
-                                           nullptr, metis_options, &objval, labels.data());
+    auto* adjwgt = edge_weights.empty() ? nullptr : const_cast<idx_t*>(edge_weights.data());
+    const auto call = method == MetisMethod::kway ? METIS_PartGraphKway : METIS_PartGraphRecursive;
+    // One METIS call at a time: its random number generator (GKlib's) is one per process, reseeded by each
+    // call, so calls that overlap would draw from each other's sequence and their parts would depend on timing.
+    static std::mutex metis_lock;
+    const std::lock_guard<std::mutex> hold(metis_lock);
+    const int status = call(&nvtxs, &ncon, xadj, adjncy, nullptr, nullptr, adjwgt, &nparts, nullptr, nullptr,
+                            metis_options, &objval, labels.data());
     if (status != METIS_OK) {
       throw NumericalError("METIS could not partition the graph (" + std::to_string(vertices) + " vertices, " +
                            std::to_string(options.parts) + " parts): " + metis_status(status));
     }
   }
-  return make_partition(graph, labels);
+  return labels;
 }
+
+}  // namespace detail
 
 std::vector<int> parts_within(const Partition& partition, std::span<const int> seeds, int hops) {
   const auto count = static_cast<std::size_t>(partition.part_count());

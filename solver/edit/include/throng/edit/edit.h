@@ -59,8 +59,9 @@ namespace throng::edit {
 /// only the parts holding a moved handle or a general constraint plus the parts within `halo` hops of them, with
 /// the rest pinned to its current positions. parts = 0 solves the whole graph (the Editor).
 struct LocalOptions {
-  /// `parts` value for parts of about vertices_per_part vertices each: #vertices / vertices_per_part (rounded,
-  /// at least 1), so a region's size, and a drag's cost, follow the part size and not the crowd's (job: auto).
+  /// `parts` value for parts of about vertices_per_part vertices each, cut along time and space separately
+  /// (partition_time_blocks in throng/graph/partition.h: blocks of 2∛vertices_per_part samples × groups of
+  /// agents), so a region's size, and a drag's cost, follow the part size and not the crowd's (job: auto).
   static constexpr int by_size = std::numeric_limits<int>::max();
 
   int parts = 0;                  ///< METIS parts, ≥ 0 (0: off, global solves; by_size: from vertices_per_part)

@@ -4,7 +4,8 @@
 //
 // Method. The motion graph is split once into LocalOptions::parts parts by METIS (throng/graph/partition.h,
 // over formation and motion edges), or with parts = LocalOptions::by_size into parts of about
-// vertices_per_part vertices, so that a region's size, and a drag's cost, do not grow with the crowd. For each
+// vertices_per_part vertices, each a block of consecutive samples × a group of agents close in them
+// (partition_time_blocks), so that a region's size, and a drag's cost, do not grow with the crowd. For each
 // deform():
 //  1. Reached vertices: handles whose target differs from their current position (a pin that keeps a vertex
 //     where it is reaches nothing) and every vertex a general constraint names. Reached parts: their parts.
