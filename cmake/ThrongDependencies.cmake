@@ -17,7 +17,7 @@ find_package(MPI REQUIRED COMPONENTS C)
 
 # HDF5: the OpenMPI build, the same library PETSc links, so one process never loads two HDF5 libraries.
 pkg_check_modules(HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
-# libdeflate (libdeflate-dev): io deflates a dataset's chunks in parallel, 2.5x zlib's speed at level 1 for zlib
+# libdeflate (libdeflate-dev): io deflates a dataset's chunks in parallel, about 2x zlib's speed at level 1 for zlib
 # streams any HDF5 reader inflates (io/src/filtered_chunks.h).
 pkg_check_modules(LIBDEFLATE REQUIRED IMPORTED_TARGET libdeflate)
 

@@ -131,7 +131,8 @@ TEST_CASE("parts by size: --local-parts auto and local.vertices_per_part, bad va
   const std::string base = "--json --quiet edit " + input.string() + " --job " + job.string();
   std::string out;
   REQUIRE(run(base + " --local-parts auto --set local.vertices_per_part=200 --halo 0 -o " + output.string(), &out) == 0);
-  CHECK(nlohmann::json::parse(out)["parts"] == 7);  // 1,408 / 200 rounded
+  // partition_time_blocks: one block (11 samples, against 2∛200 ≈ 12 a block) of 128 × 11 / 200 ≈ 7 groups.
+  CHECK(nlohmann::json::parse(out)["parts"] == 7);
   // The job's block does the same, and --print-config shows it.
   const auto job_auto = write_text(dir / "job_auto.yaml", std::string(corner_drag) + "local: {parts: auto, vertices_per_part: 200, halo: 0}\n");
   REQUIRE(run("--quiet edit " + input.string() + " --job " + job_auto.string() + " -o " + (dir / "auto.h5").string()) == 0);

@@ -56,10 +56,6 @@ TEST_CASE("block parts are consecutive samples of one block times the same agent
   const Partition p = partition_time_blocks(g, 96, {});
   REQUIRE(p.part_count() == 20);
   const AdjacencyGraph adjacency = space_time_adjacency(g);
-  for (std::size_t part = 0; part < 20; ++part) {
-    // Boundary and adjacency as make_partition states them (checked by brute force in test_partition.cpp).
-    CHECK(p.boundary[part] == make_partition(adjacency, p.part_of).boundary[part]);
-  }
   std::size_t largest = 0;
   for (const PartShape& s : shapes(g, p)) {
     REQUIRE_FALSE(s.samples.empty());
@@ -93,6 +89,35 @@ TEST_CASE("block groups follow the formation edges: agents never joined by one a
   CHECK(((s[0].agents_at.front() == even && s[1].agents_at.front() == odd) ||
          (s[0].agents_at.front() == odd && s[1].agents_at.front() == even)));
   CHECK(p.edge_cut == 0);
+}
+
+TEST_CASE("block groups weigh each formation edge by the samples that hold it") {
+  // 8 agents over 6 samples: rails 0-2-4-6 and 1-3-5-7 at every sample, rungs 0-1, 2-3, 4-5, 6-7 at the first
+  // sample only. Unweighted, the union is a ladder whose best halving cuts two rails ({0,1,2,3} | {4,5,6,7});
+  // weighted by samples (rails 6, rungs 1) the best halving cuts the four rungs and keeps the rails whole.
+  MotionGraph g = grid_graph(2, 4, 6);
+  REQUIRE(g.agent_count() == 8);
+  const std::vector<std::array<int, 2>> rails{{0, 2}, {2, 4}, {4, 6}, {1, 3}, {3, 5}, {5, 7}};
+  for (auto& sample : g.edges) sample = rails;
+  g.edges[0] = {{0, 1}, {0, 2}, {1, 3}, {2, 3}, {2, 4}, {3, 5}, {4, 5}, {4, 6}, {5, 7}, {6, 7}};
+  const Partition p = partition_time_blocks(g, 24, {});
+  REQUIRE(p.part_count() == 2);
+  const auto s = shapes(g, p);
+  const std::set<std::size_t> even{0, 2, 4, 6}, odd{1, 3, 5, 7};
+  CHECK(((s[0].agents_at.front() == even && s[1].agents_at.front() == odd) ||
+         (s[0].agents_at.front() == odd && s[1].agents_at.front() == even)));
+  // The space-time cut: the four rungs at the first sample.
+  CHECK(p.edge_cut == 4);
+}
+
+TEST_CASE("a block without formation edges groups consecutive agents") {
+  MotionGraph g = grid_graph(2, 4, 6);
+  for (auto& sample : g.edges) sample.clear();
+  const Partition p = partition_time_blocks(g, 24, {});  // one block, 2 groups
+  REQUIRE(p.part_count() == 2);
+  const auto s = shapes(g, p);
+  CHECK(s[0].agents_at.front() == std::set<std::size_t>{0, 1, 2, 3});
+  CHECK(s[1].agents_at.front() == std::set<std::size_t>{4, 5, 6, 7});
 }
 
 TEST_CASE("block parts are the same whatever the thread count, and more groups than agents give one agent each") {

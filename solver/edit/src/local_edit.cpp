@@ -337,7 +337,7 @@ LocalEditor::LocalEditor(const CrowdMotion& crowd, const Options& options, const
   validate(options);
   if (options.local.parts < 1) {
     throw ConfigError("local.parts " + std::to_string(options.local.parts) + ": expected ≥ 1 for a local edit (or auto: "
-                      "vertices / local.vertices_per_part)");
+                      "parts of about local.vertices_per_part vertices)");
   }
   if (options.local.vertices_per_part < 1) {
     throw ConfigError("local.vertices_per_part " + std::to_string(options.local.vertices_per_part) + ": expected ≥ 1");

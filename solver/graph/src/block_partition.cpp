@@ -101,9 +101,15 @@ Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part,
         std::iota(group.begin(), group.end(), 0);  // an agent a group (METIS would leave some groups empty)
       } else if (groups[k] > 1) {
         const WeightedGraph g = block_graph(graph, s0, s1);
-        PartitionOptions block = options;
-        block.parts = groups[k];
-        group = detail::metis_parts(g.graph, g.weights, block, detail::MetisMethod::recursive);
+        if (g.graph.neighbours.empty()) {
+          // No formation edge to follow: consecutive agents (and METIS is not given empty edge arrays, which it
+          // may read).
+          for (std::size_t j = 0; j < n; ++j) group[j] = static_cast<int>(j * static_cast<std::size_t>(groups[k]) / n);
+        } else {
+          PartitionOptions block = options;
+          block.parts = groups[k];
+          group = detail::metis_parts(g.graph, g.weights, block, detail::MetisMethod::recursive);
+        }
       }
       for (std::size_t i = s0; i < s1; ++i) {
         for (std::size_t j = 0; j < n; ++j) labels[i * n + j] = first_label[k] + group[j];

@@ -1,5 +1,6 @@
-// Partitioning the space-time graph into parts (METIS k-way), as plain data other code builds on: local edits
-// solve only the parts an edit reaches (throng/edit/local_edit.h), distributed solves give parts to ranks.
+// Partitioning the space-time graph into parts (METIS k-way on the whole graph, or time blocks × agent groups:
+// partition_time_blocks), as plain data other code builds on: local edits solve only the parts an edit reaches
+// (throng/edit/local_edit.h), distributed solves give parts to ranks.
 //
 // The graph is undirected and given in CSR form (METIS's xadj/adjncy). For a motion graph its vertices are the
 // graph's vertices (agent j at sample i = row i·#agents + j) and its edges the formation edges of every sample
@@ -79,8 +80,9 @@ struct Partition {
 ///
 /// Why: METIS on the whole space-time graph grew as N^1.3 (17 s of partitioning at 10,000 agents × 300 samples)
 /// and the shapes of its parts drifted with the crowd's size, so a local drag's region (the reached parts and
-/// their neighbours) did too. Here each METIS call sees one block's agents, a graph the size of one sample's, the
-/// blocks are cut side by side, and a part's extent in time does not depend on the crowd.
+/// their neighbours) did too. Here each METIS call sees one block's agents, a graph the size of one sample's (the
+/// blocks' graphs are built side by side; the METIS calls take turns), and a part's extent in time does not
+/// depend on the crowd. A block with no formation edge has its agents grouped by index (nothing to follow).
 /// Same graph and options, same parts, whatever the thread count. Throws ConfigError for vertices_per_part < 1
 /// or an imbalance outside (1, 10]; NumericalError when METIS fails.
 [[nodiscard]] Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part, const PartitionOptions& options);
@@ -88,9 +90,9 @@ struct Partition {
 /// Samples per block of partition_time_blocks: 2∛vertices_per_part, rounded, at least 1 (16 for 500: groups of
 /// about 31 agents). Chosen by measurement (bench_scale's local drag, 20 agents dragged over 21 frames, halo 1, 500
 /// vertices a part, 1,000 to 10,000 agents × 300 samples): blocks of 3, 5 and 8 samples gave regions of 21,000 to
-/// 47,000 vertices that changed with the crowd's size; 12 and 16 gave 19,500 to 27,000 at every size, and with 16
-/// no edge jump (0.04–0.07 m added at the region's edge, against 0.7–1.7 m with METIS on the whole graph); 24 gave
-/// smaller regions with jumps at the edge again. (Minimising a part's cut edges alone would give 5 to 8.)
+/// 47,000 vertices that changed with the crowd's size; 12 and 16 gave 19,000 to 28,000 at every size, and with 16
+/// 0.05–0.10 m added at the region's edge (a jump, by BoundaryStep's rule, at one size of four), against 0.7–1.7 m
+/// with METIS on the whole graph; 24 gave smaller regions with jumps at the edge again. (Minimising a part's cut edges alone would give 5 to 8.)
 [[nodiscard]] std::size_t samples_per_block(int vertices_per_part);
 
 /// Builds the partition data for a given assignment (any labels ≥ 0; renumbered like partition_graph).
