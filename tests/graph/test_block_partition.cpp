@@ -10,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <set>
 #include <vector>
 
@@ -44,6 +45,31 @@ std::vector<PartShape> shapes(const MotionGraph& g, const Partition& p) {
   return out;
 }
 
+// 8 agents over 6 samples (the grid's two rows of 4: agents 0..3 and 4..7) with `edges` at every sample; 24
+// vertices a part make one block (2∛24 ≈ 6 samples) of 8 × 6 / 24 = 2 groups.
+MotionGraph eight_agents(const std::vector<std::array<int, 2>>& edges) {
+  MotionGraph g = grid_graph(2, 4, 6);
+  REQUIRE(g.agent_count() == 8);
+  for (auto& sample : g.edges) sample = edges;
+  return g;
+}
+
+// The two groups of a one-block partition of eight_agents as the sets of their agents, in part order.
+std::vector<std::set<std::size_t>> two_groups(const MotionGraph& g, const Partition& p) {
+  REQUIRE(p.part_count() == 2);
+  const auto s = shapes(g, p);
+  return {s[0].agents_at.front(), s[1].agents_at.front()};
+}
+
+// True when the groups are the even and the odd agents (in either order).
+bool even_and_odd(const std::vector<std::set<std::size_t>>& groups) {
+  const std::set<std::size_t> even{0, 2, 4, 6}, odd{1, 3, 5, 7};
+  return (groups[0] == even && groups[1] == odd) || (groups[0] == odd && groups[1] == even);
+}
+
+// Rails 0-2-4-6 and 1-3-5-7: the even and the odd agents, each a chain.
+const std::vector<std::array<int, 2>> rails{{0, 2}, {2, 4}, {4, 6}, {1, 3}, {3, 5}, {5, 7}};
+
 }  // namespace
 
 TEST_CASE("block parts are consecutive samples of one block times the same agents, about vertices_per_part each") {
@@ -75,49 +101,29 @@ TEST_CASE("block parts are consecutive samples of one block times the same agent
 }
 
 TEST_CASE("block groups follow the formation edges: agents never joined by one are not grouped together") {
-  // 8 agents, two chains 0-1-2-3 and 4-5-6-7 at every sample and no edge between them; 6 samples, 24 vertices a
-  // part: one block (2∛24 ≈ 6 samples) of 8 × 6 / 24 = 2 groups, so the groups are the chains. The grid's agents
-  // 0..3 and 4..7 are its two rows: interleave the chains (0, 2, 4, 6 and 1, 3, 5, 7) so that the positions
-  // alone would group them otherwise.
-  MotionGraph g = grid_graph(2, 4, 6);
-  REQUIRE(g.agent_count() == 8);
-  for (auto& sample : g.edges) sample = {{0, 2}, {2, 4}, {4, 6}, {1, 3}, {3, 5}, {5, 7}};
+  // The rails at every sample and no edge between them: the groups are the rails, not the grid's rows (which
+  // the positions alone would give).
+  const MotionGraph g = eight_agents(rails);
   const Partition p = partition_time_blocks(g, 24, {});
-  REQUIRE(p.part_count() == 2);
-  const auto s = shapes(g, p);
-  const std::set<std::size_t> even{0, 2, 4, 6}, odd{1, 3, 5, 7};
-  CHECK(((s[0].agents_at.front() == even && s[1].agents_at.front() == odd) ||
-         (s[0].agents_at.front() == odd && s[1].agents_at.front() == even)));
+  CHECK(even_and_odd(two_groups(g, p)));
   CHECK(p.edge_cut == 0);
 }
 
 TEST_CASE("block groups weigh each formation edge by the samples that hold it") {
-  // 8 agents over 6 samples: rails 0-2-4-6 and 1-3-5-7 at every sample, rungs 0-1, 2-3, 4-5, 6-7 at the first
-  // sample only. Unweighted, the union is a ladder whose best halving cuts two rails ({0,1,2,3} | {4,5,6,7});
-  // weighted by samples (rails 6, rungs 1) the best halving cuts the four rungs and keeps the rails whole.
-  MotionGraph g = grid_graph(2, 4, 6);
-  REQUIRE(g.agent_count() == 8);
-  const std::vector<std::array<int, 2>> rails{{0, 2}, {2, 4}, {4, 6}, {1, 3}, {3, 5}, {5, 7}};
-  for (auto& sample : g.edges) sample = rails;
+  // The rails at every sample, and rungs 0-1, 2-3, 4-5, 6-7 at the first sample only. Unweighted, the union is a
+  // ladder whose best halving cuts two rails ({0,1,2,3} | {4,5,6,7}); weighted by samples (rails 6, rungs 1) the
+  // best halving cuts the four rungs and keeps the rails whole.
+  MotionGraph g = eight_agents(rails);
   g.edges[0] = {{0, 1}, {0, 2}, {1, 3}, {2, 3}, {2, 4}, {3, 5}, {4, 5}, {4, 6}, {5, 7}, {6, 7}};
   const Partition p = partition_time_blocks(g, 24, {});
-  REQUIRE(p.part_count() == 2);
-  const auto s = shapes(g, p);
-  const std::set<std::size_t> even{0, 2, 4, 6}, odd{1, 3, 5, 7};
-  CHECK(((s[0].agents_at.front() == even && s[1].agents_at.front() == odd) ||
-         (s[0].agents_at.front() == odd && s[1].agents_at.front() == even)));
-  // The space-time cut: the four rungs at the first sample.
-  CHECK(p.edge_cut == 4);
+  CHECK(even_and_odd(two_groups(g, p)));
+  CHECK(p.edge_cut == 4);  // the four rungs at the first sample
 }
 
 TEST_CASE("a block without formation edges groups consecutive agents") {
-  MotionGraph g = grid_graph(2, 4, 6);
-  for (auto& sample : g.edges) sample.clear();
-  const Partition p = partition_time_blocks(g, 24, {});  // one block, 2 groups
-  REQUIRE(p.part_count() == 2);
-  const auto s = shapes(g, p);
-  CHECK(s[0].agents_at.front() == std::set<std::size_t>{0, 1, 2, 3});
-  CHECK(s[1].agents_at.front() == std::set<std::size_t>{4, 5, 6, 7});
+  const MotionGraph g = eight_agents({});
+  const Partition p = partition_time_blocks(g, 24, {});
+  CHECK(two_groups(g, p) == std::vector<std::set<std::size_t>>{{0, 1, 2, 3}, {4, 5, 6, 7}});
 }
 
 TEST_CASE("block parts are the same whatever the thread count, and more groups than agents give one agent each") {

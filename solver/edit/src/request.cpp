@@ -39,11 +39,17 @@ std::size_t agent(const Clip& clip, const std::vector<std::int64_t>& crowd_ids, 
                                     " (not among clip.agents, or absent from all of it)"));
 }
 
-// The input frame a request's frame names (negative: back from the clip's last frame), checked to be in the clip.
+// The input frame a request's frame names (negative: back from the clip's last frame), not checked.
+long named_frame(const Clip& clip, Frame frame) { return frame < 0 ? static_cast<long>(clip.last_frame) + 1 + frame : frame; }
+
+bool in_clip(const Clip& clip, long frame) {
+  return frame >= static_cast<long>(clip.first_frame) && frame <= static_cast<long>(clip.last_frame);
+}
+
+// The input frame a request's frame names, checked to be in the clip.
 std::size_t absolute_frame(const Clip& clip, Frame frame, const std::string& where) {
-  const long last = static_cast<long>(clip.last_frame);
-  const long f = frame < 0 ? last + 1 + frame : frame;
-  if (f < static_cast<long>(clip.first_frame) || f > last) {
+  const long f = named_frame(clip, frame);
+  if (!in_clip(clip, f)) {
     throw ConfigError(where + " " + std::to_string(frame) + (frame < 0 ? " (" + std::to_string(f) + ")" : std::string()) +
                       " is outside the clip " + clip_range(clip));
   }
@@ -334,10 +340,8 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     // A known agent at a sample of the clip without any text; agent() and sample_at() say what is wrong otherwise.
     const long known = column_of(p.agent);
     const std::size_t j = known >= 0 ? static_cast<std::size_t>(known) : agent(clip, crowd_ids, p.agent, who.text() + ".agent");
-    const long frame = p.frame < 0 ? static_cast<long>(clip.last_frame) + 1 + p.frame : p.frame;
-    const long sample = frame >= static_cast<long>(clip.first_frame) && frame <= static_cast<long>(clip.last_frame)
-                            ? clip.sample_of_frame(static_cast<std::size_t>(frame))
-                            : -1;
+    const long frame = named_frame(clip, p.frame);
+    const long sample = in_clip(clip, frame) ? clip.sample_of_frame(static_cast<std::size_t>(frame)) : -1;
     const std::size_t s = sample >= 0 ? static_cast<std::size_t>(sample) : sample_at(clip, p.frame, who.text() + ".frame");
     const Eigen::Vector2d at = p.position.value_or(original(clip, s, j));
     current = {static_cast<Index>(coordinates.size()), false, {0, 0}};

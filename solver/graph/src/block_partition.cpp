@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -76,9 +75,7 @@ std::size_t samples_per_block(int vertices_per_part) {
 
 Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part, const PartitionOptions& options) {
   const std::size_t length = samples_per_block(vertices_per_part);
-  if (!(options.imbalance > 1.0 && options.imbalance <= 10.0)) {
-    throw ConfigError("partition imbalance " + std::to_string(options.imbalance) + ": expected (1, 10]");
-  }
+  detail::check_imbalance(options.imbalance);
   const std::size_t samples = graph.sample_count(), n = graph.agent_count();
   std::vector<int> labels(graph.vertex_count(), 0);
   if (samples == 0 || n == 0) return make_partition(space_time_adjacency(graph), labels);
@@ -96,16 +93,15 @@ Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part,
   parallel_for(blocks, 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t k = begin; k < end; ++k) {
       const std::size_t s0 = first_sample(k), s1 = first_sample(k + 1);
-      std::vector<int> group(n, 0);
-      if (static_cast<std::size_t>(groups[k]) == n) {
-        std::iota(group.begin(), group.end(), 0);  // an agent a group (METIS would leave some groups empty)
-      } else if (groups[k] > 1) {
+      // Consecutive agents where there is nothing for METIS to do: one group, an agent a group (METIS would
+      // leave some empty), or a block without formation edges (METIS is not given empty edge arrays, which it
+      // may read).
+      const auto count = static_cast<std::size_t>(groups[k]);
+      std::vector<int> group(n);
+      for (std::size_t j = 0; j < n; ++j) group[j] = static_cast<int>(j * count / n);
+      if (count > 1 && count < n) {
         const WeightedGraph g = block_graph(graph, s0, s1);
-        if (g.graph.neighbours.empty()) {
-          // No formation edge to follow: consecutive agents (and METIS is not given empty edge arrays, which it
-          // may read).
-          for (std::size_t j = 0; j < n; ++j) group[j] = static_cast<int>(j * static_cast<std::size_t>(groups[k]) / n);
-        } else {
+        if (!g.graph.neighbours.empty()) {
           PartitionOptions block = options;
           block.parts = groups[k];
           group = detail::metis_parts(g.graph, g.weights, block, detail::MetisMethod::recursive);

@@ -133,13 +133,17 @@ Partition partition_graph(const AdjacencyGraph& graph, const PartitionOptions& o
     throw ConfigError("partition parts " + std::to_string(options.parts) + ": the graph has only " +
                       std::to_string(vertices) + " vertices");
   }
-  if (!(options.imbalance > 1.0 && options.imbalance <= 10.0)) {
-    throw ConfigError("partition imbalance " + std::to_string(options.imbalance) + ": expected (1, 10]");
-  }
+  detail::check_imbalance(options.imbalance);
   return make_partition(graph, detail::metis_parts(graph, {}, options, detail::MetisMethod::kway));
 }
 
 namespace detail {
+
+void check_imbalance(double imbalance) {
+  if (!(imbalance > 1.0 && imbalance <= 10.0)) {
+    throw ConfigError("partition imbalance " + std::to_string(imbalance) + ": expected (1, 10]");
+  }
+}
 
 std::vector<int> metis_parts(const AdjacencyGraph& graph, std::span<const int> edge_weights, const PartitionOptions& options,
                              MetisMethod method) {
