@@ -5,8 +5,9 @@
 // pipeline step hands its crowd on) to a file; xdmf_from_file reads only the .h5's layout; read_crowd is the read
 // the path entry points add (peak_heap_MB there is the reader's: it holds the file's arrays and the crowd's at
 // once); derive_facing the default facing alone (PathFacing); cat_<format> copies that format's output with
-// `cat` (page cache to page cache, as the export writes) over its last copy, cat_new_<format> into a new file
-// renamed onto its last copy, the way the export writes (see cat() for why both). Counters: MB (output size),
+// `cat` over its last copy, cat_durable_<format> the way the export writes (into a new file, flushed to disk,
+// renamed onto the last copy), write_durable_<format> writes the same bytes from memory that way (see cat() and
+// write_durable() for why all three). Every timed region starts after a sync (settle()). Counters: MB (output size),
 // MB_per_s, peak_heap_MB (heap held at most during the export above what was held before: bench/common/heap.h),
 // crowd_MB (the crowd's own arrays, for scale), cpu_s (CPU seconds of every thread, or of cat: on a shared
 // machine the wall time measures the scheduler).
@@ -28,14 +29,20 @@
 
 #include <benchmark/benchmark.h>
 
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -87,6 +94,11 @@ double cpu_seconds(int who) {
   return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+// Writes every dirty page out before a timed region (untimed), so each case starts from the same state: without
+// it a case pays for the writeback of the gigabytes the cases before it wrote (the kernel throttles writers once
+// dirty pages pass its threshold), and a case's time depended on its place in the run.
+void settle() { ::sync(); }
+
 // A file for this case's size: out_<agents>_<frames><extension>.
 std::filesystem::path sized(const benchmark::State& state, const std::string& stem, const std::string& extension) {
   return folder() / (stem + "_" + std::to_string(state.range(0)) + "_" + std::to_string(state.range(1)) + extension);
@@ -110,6 +122,9 @@ void run(benchmark::State& state, const char* extension, Export export_to) {
   const auto output = sized(state, "out", extension);
   double seconds = 0, peak = 0, cpu = 0;
   for (auto _ : state) {
+    state.PauseTiming();
+    settle();
+    state.ResumeTiming();
     bench::HeapPeak heap;
     const double cpu0 = cpu_seconds(RUSAGE_SELF);
     const auto start = std::chrono::steady_clock::now();
@@ -123,32 +138,79 @@ void run(benchmark::State& state, const char* extension, Export export_to) {
   state.counters["crowd_MB"] = crowd_mb(f);
 }
 
-// `cat` copies a format's output (made by its export case first). Plain: over its last copy in place (`>`
-// truncates it first, and the kernel hands the freed page-cache pages straight back). into_new: the way the
-// export writes, into a new file beside the target renamed onto it when complete (`cat > T.tmp && mv T.tmp T`),
-// so the last copy is freed only at the end and the new file takes fresh pages — on this VM that costs several
-// times more (measured with dd, 274 MB: 0.08 s over a truncated file, 0.3–0.6 s into a new one beside it).
-void cat(benchmark::State& state, const char* extension, bool into_new) {
+// A baseline's timing: body() once per iteration, each after a settle(), with the CPU of `who` (RUSAGE_SELF, or
+// RUSAGE_CHILDREN for the programs body runs); body returns false on failure. Reports `output`'s size.
+template <class Body>
+void time_baseline(benchmark::State& state, const std::filesystem::path& output, int who, const char* failure, Body body) {
+  double seconds = 0, cpu = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    settle();
+    state.ResumeTiming();
+    const double cpu0 = cpu_seconds(who);
+    const auto start = std::chrono::steady_clock::now();
+    const bool ok = body();
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cpu = cpu_seconds(who) - cpu0;
+    if (!ok) state.SkipWithError(failure);
+    state.SetIterationTime(seconds);
+  }
+  report(state, output, seconds, 0, cpu);
+}
+
+// `cat` copies a format's output (made by its export case first). Plain (cat_<format>): over its last copy in
+// place (`>` truncates it first, and the kernel hands the freed page-cache pages straight back), the issue's
+// baseline. durable (cat_durable_<format>): the way every export writes, into a new file beside the target,
+// flushed to disk, renamed onto it (`cat F > T.tmp && sync T.tmp && mv T.tmp T`): the flush is what lets a
+// machine that loses power keep the previous output or the new one, never half a file (AtomicOutput::commit).
+void cat(benchmark::State& state, const char* extension, bool durable) {
   const auto input = sized(state, "out", extension);
-  const auto output = sized(state, into_new ? "cat_new" : "cat", extension);
+  const auto output = sized(state, durable ? "cat_durable" : "cat", extension);
   if (!std::filesystem::exists(input)) {
     state.SkipWithError("run the export case first: its output is what cat copies");
     return;
   }
-  // into_new: written beside the target and renamed onto it, as the export's AtomicOutput does.
-  const std::string command = into_new ? "cat '" + input.string() + "' > '" + output.string() + ".tmp' && mv '" + output.string() +
-                                             ".tmp' '" + output.string() + "'"
-                                       : "cat '" + input.string() + "' > '" + output.string() + "'";
-  double seconds = 0, cpu = 0;
-  for (auto _ : state) {
-    const double cpu0 = cpu_seconds(RUSAGE_CHILDREN);
-    const auto start = std::chrono::steady_clock::now();
-    if (std::system(command.c_str()) != 0) state.SkipWithError("cat failed");
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    cpu = cpu_seconds(RUSAGE_CHILDREN) - cpu0;
-    state.SetIterationTime(seconds);
+  const std::string temporary = output.string() + ".tmp";
+  const std::string command = durable ? "cat '" + input.string() + "' > '" + temporary + "' && sync '" + temporary + "' && mv '" +
+                                            temporary + "' '" + output.string() + "'"
+                                      : "cat '" + input.string() + "' > '" + output.string() + "'";
+  time_baseline(state, output, RUSAGE_CHILDREN, "cat failed", [&] { return std::system(command.c_str()) == 0; });
+}
+
+// The floor for a program that makes its bytes (write_durable_<format>): a format's output, held in memory (read
+// untimed), written with write(2) in 8 MiB pieces into a new file, flushed and renamed onto its last copy, as
+// the exports write. `cat` does not pass its bytes through a process: coreutils 9 copies a regular file with
+// copy_file_range, in the kernel, which costs a half to a third of writing the same bytes from memory here (274 MB
+// after a sync: cat 0.05 s, dd with 8 MiB blocks 0.12 s, with 128 KiB blocks 0.25 s).
+void write_durable(benchmark::State& state, const char* extension) {
+  const auto input = sized(state, "out", extension);
+  const auto output = sized(state, "write_durable", extension);
+  if (!std::filesystem::exists(input)) {
+    state.SkipWithError("run the export case first: its output is what is written");
+    return;
   }
-  report(state, output, seconds, 0, cpu);
+  std::vector<char> bytes(std::filesystem::file_size(input));
+  {
+    std::FILE* in = std::fopen(input.c_str(), "rb");
+    const bool read = in && std::fread(bytes.data(), 1, bytes.size(), in) == bytes.size();
+    if (in) std::fclose(in);
+    if (!read) {
+      state.SkipWithError("cannot read the export's output");
+      return;
+    }
+  }
+  const std::string temporary = output.string() + ".tmp";
+  time_baseline(state, output, RUSAGE_SELF, "write failed", [&] {
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    bool ok = fd >= 0;
+    for (std::size_t at = 0; ok && at < bytes.size();) {
+      const ssize_t n = ::write(fd, bytes.data() + at, std::min<std::size_t>(8 << 20, bytes.size() - at));
+      ok = n > 0;
+      at += ok ? static_cast<std::size_t>(n) : 0;
+    }
+    ok = ok && ::fsync(fd) == 0;
+    return fd >= 0 && ::close(fd) == 0 && ok && std::rename(temporary.c_str(), output.c_str()) == 0;
+  });
 }
 
 void export_csv_case(benchmark::State& s) { run(s, ".csv", [](const CrowdFile& f, const auto& o) { export_csv(f, o); }); }
@@ -195,24 +257,32 @@ void cat_csv(benchmark::State& s) { cat(s, ".csv", false); }
 void cat_gltf(benchmark::State& s) { cat(s, ".glb", false); }
 void cat_usd(benchmark::State& s) { cat(s, ".usda", false); }
 void cat_pedpy(benchmark::State& s) { cat(s, ".pedpy.h5", false); }
-void cat_new_csv(benchmark::State& s) { cat(s, ".csv", true); }
-void cat_new_gltf(benchmark::State& s) { cat(s, ".glb", true); }
-void cat_new_usd(benchmark::State& s) { cat(s, ".usda", true); }
-void cat_new_pedpy(benchmark::State& s) { cat(s, ".pedpy.h5", true); }
+void cat_durable_csv(benchmark::State& s) { cat(s, ".csv", true); }
+void cat_durable_gltf(benchmark::State& s) { cat(s, ".glb", true); }
+void cat_durable_usd(benchmark::State& s) { cat(s, ".usda", true); }
+void cat_durable_pedpy(benchmark::State& s) { cat(s, ".pedpy.h5", true); }
+void write_durable_csv(benchmark::State& s) { write_durable(s, ".csv"); }
+void write_durable_gltf(benchmark::State& s) { write_durable(s, ".glb"); }
+void write_durable_usd(benchmark::State& s) { write_durable(s, ".usda"); }
+void write_durable_pedpy(benchmark::State& s) { write_durable(s, ".pedpy.h5"); }
 
 #define THRONG_EXPORT_SIZES ->Args({1000, 100})->Args({10000, 1000})->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1)
 BENCHMARK(export_gltf_case) THRONG_EXPORT_SIZES;
 BENCHMARK(cat_gltf) THRONG_EXPORT_SIZES;
-BENCHMARK(cat_new_gltf) THRONG_EXPORT_SIZES;
+BENCHMARK(cat_durable_gltf) THRONG_EXPORT_SIZES;
+BENCHMARK(write_durable_gltf) THRONG_EXPORT_SIZES;
 BENCHMARK(export_usd_case) THRONG_EXPORT_SIZES;
 BENCHMARK(cat_usd) THRONG_EXPORT_SIZES;
-BENCHMARK(cat_new_usd) THRONG_EXPORT_SIZES;
+BENCHMARK(cat_durable_usd) THRONG_EXPORT_SIZES;
+BENCHMARK(write_durable_usd) THRONG_EXPORT_SIZES;
 BENCHMARK(export_pedpy_case) THRONG_EXPORT_SIZES;
 BENCHMARK(cat_pedpy) THRONG_EXPORT_SIZES;
-BENCHMARK(cat_new_pedpy) THRONG_EXPORT_SIZES;
+BENCHMARK(cat_durable_pedpy) THRONG_EXPORT_SIZES;
+BENCHMARK(write_durable_pedpy) THRONG_EXPORT_SIZES;
 BENCHMARK(export_csv_case) THRONG_EXPORT_SIZES;
 BENCHMARK(cat_csv) THRONG_EXPORT_SIZES;
-BENCHMARK(cat_new_csv) THRONG_EXPORT_SIZES;
+BENCHMARK(cat_durable_csv) THRONG_EXPORT_SIZES;
+BENCHMARK(write_durable_csv) THRONG_EXPORT_SIZES;
 BENCHMARK(xdmf_from_file) THRONG_EXPORT_SIZES;
 BENCHMARK(read_crowd) THRONG_EXPORT_SIZES;
 BENCHMARK(derive_facing) THRONG_EXPORT_SIZES;

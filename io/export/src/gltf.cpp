@@ -41,22 +41,40 @@ const Eigen::Quaterniond body_to_local = [] {
 }();
 // The node rotation that shows facing q: world_to_gltf · q · body_to_local⁻¹ (mesh vertices are body_to_local · v).
 Eigen::Quaterniond node_rotation(const Eigen::Quaterniond& q) { return world_to_gltf * q * body_to_local.conjugate(); }
+// The same map on coefficients (x, y, z, w): a product with fixed quaternions on either side is linear in q, so
+// the animation's rotations (one per agent and frame) cost one 4×4 product instead of two quaternion products.
+const Eigen::Matrix4d node_rotation_map = [] {
+  Eigen::Matrix4d map;
+  for (int k = 0; k < 4; ++k) {
+    Eigen::Quaterniond unit;
+    unit.coeffs() = Eigen::Vector4d::Unit(k);
+    map.col(k) = node_rotation(unit).coeffs();
+  }
+  return map;
+}();
 
 std::size_t padded(std::size_t bytes) { return (bytes + 3) & ~std::size_t(3); }
 
-// Frames where an agent's presence changes (frame 0 first): the keys of its STEP scale channel. Empty for an
-// agent present at every frame (no scale channel).
-std::vector<std::uint32_t> presence_keys(const CrowdMotion& m, std::size_t n) {
-  std::vector<std::uint32_t> keys{0};
-  bool always = m.present(0, n), before = always;
-  for (std::size_t t = 1; t < m.frame_count(); ++t) {
-    const bool now = m.present(t, n);
-    always = always && now;
-    if (now != before) keys.push_back(static_cast<std::uint32_t>(t));
-    before = now;
+// For agents [n0, n1): the frames where each one's presence changes (frame 0 first), the keys of its STEP scale
+// channel; empty for an agent present at every frame (no scale channel). Frame by frame over the agents, so the
+// reads follow the positions' layout (one agent through every frame would stride a whole frame per read).
+void presence_keys(const CrowdMotion& m, std::size_t n0, std::size_t n1, std::vector<std::vector<std::uint32_t>>& keys) {
+  std::vector<unsigned char> before(n1 - n0), always(n1 - n0);
+  for (std::size_t n = n0; n < n1; ++n) {
+    keys[n].assign(1, 0);
+    before[n - n0] = always[n - n0] = m.present(0, n);
   }
-  if (always) keys.clear();
-  return keys;
+  for (std::size_t t = 1; t < m.frame_count(); ++t) {
+    for (std::size_t n = n0; n < n1; ++n) {
+      const unsigned char now = m.present(t, n);
+      always[n - n0] &= now;
+      if (now != before[n - n0]) keys[n].push_back(static_cast<std::uint32_t>(t));
+      before[n - n0] = now;
+    }
+  }
+  for (std::size_t n = n0; n < n1; ++n) {
+    if (always[n - n0]) keys[n].clear();
+  }
 }
 
 class GltfWriter {
@@ -68,10 +86,8 @@ class GltfWriter {
     const std::size_t T = m_.frame_count(), N = m_.agent_count();
     if (T == 0 || N == 0) throw InputError("glTF export: the crowd has no frames or no agents, nothing to animate");
     keys_.resize(N);
-    // Each agent's keys on their own (a strided walk through the frames): in parallel, the same keys either way.
-    parallel_for(N, 64, [&](std::size_t n0, std::size_t n1) {
-      for (std::size_t n = n0; n < n1; ++n) keys_[n] = presence_keys(m_, n);
-    });
+    // Agent ranges in parallel, each agent's keys its own: the same keys either way.
+    parallel_for(N, 256, [&](std::size_t n0, std::size_t n1) { presence_keys(m_, n0, n1, keys_); });
     const std::string json_text = document();
     const std::size_t json_size = padded(json_text.size());
     if (12 + 8 + json_size + 8 + bin_size_ > 0xFFFFFFFFu) {
@@ -219,12 +235,12 @@ class GltfWriter {
     const std::size_t group = std::max<std::size_t>(1, group_bytes / (per_agent * 4));
     // Groups are filled while the writer thread writes the group before (detail::BlockStream).
     detail::BlockStream<std::vector<float>> stream([&](std::vector<float>& buffer) { file_.write(buffer.data(), buffer.size() * 4); });
-    std::vector<Eigen::Quaterniond> previous;
+    std::vector<Eigen::Vector4d> previous;
     for (std::size_t n0 = 0; n0 < N; n0 += group) {
       const std::size_t G = std::min(group, N - n0);
       std::vector<float>& buffer = stream.next();
       buffer.resize(G * per_agent);
-      previous.assign(G, Eigen::Quaterniond::Identity());
+      previous.assign(G, Eigen::Vector4d::Zero());
       // Agent ranges in parallel, each walking every frame over its own agents (their positions at a frame are
       // contiguous); each agent's values land in its own slots, so the bytes do not depend on the thread count.
       constexpr std::size_t ranges = 16;
@@ -235,13 +251,13 @@ class GltfWriter {
           for (std::size_t t = 0; t < T; ++t) {
             for (std::size_t j = j0; j < j1; ++j) {
               const Eigen::Vector3d p = to_gltf(poses.position(t, n0 + j));
-              Eigen::Quaterniond q = node_rotation(poses.facing(t, n0 + j));
-              if (t > 0 && q.dot(previous[j]) < 0) q.coeffs() = -q.coeffs();
+              Eigen::Vector4d q = node_rotation_map * poses.facing(t, n0 + j).coeffs();
+              if (q.dot(previous[j]) < 0) q = -q;  // previous is 0 at frame 0
               previous[j] = q;
               float* tr = buffer.data() + j * per_agent + t * 3;
               float* ro = buffer.data() + j * per_agent + T * 3 + t * 4;
               for (int k = 0; k < 3; ++k) tr[k] = static_cast<float>(p[k]);
-              for (int k = 0; k < 4; ++k) ro[k] = static_cast<float>(q.coeffs()[k]);
+              for (int k = 0; k < 4; ++k) ro[k] = static_cast<float>(q[k]);
             }
           }
         }

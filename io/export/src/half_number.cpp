@@ -71,6 +71,7 @@ const std::vector<HalfText>& half_texts() {
 }  // namespace
 
 char* put_half(char* out, double v) {
+  if (v == 0) return put_number(out, static_cast<float>(v));  // ±0 (a derived facing's x and y): no rounding to do
   const float h = as_half(v);
   const float magnitude = std::fabs(h);
   if (!(magnitude <= 1.0f) || magnitude == 0.0f) return put_number(out, h);
@@ -79,7 +80,10 @@ char* put_half(char* out, double v) {
   std::memcpy(&bits, &magnitude, sizeof bits);
   const HalfText& text = table[(((bits >> 23) - least_exponent) << 10) | ((bits >> 13) & 1023)];
   if (std::signbit(h)) *out++ = '-';
-  std::memcpy(out, text.chars.data(), text.size);
+  // All 16 bytes of the entry in one fixed-size copy (the caller's room is max_number_chars), then the text's end:
+  // a copy of the text's own length is a call per value.
+  static_assert(sizeof(HalfText) == 16 && max_number_chars >= 17);
+  std::memcpy(out, &text, sizeof text);
   return out + text.size;
 }
 

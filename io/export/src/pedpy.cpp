@@ -84,12 +84,14 @@ class RowWriter {
 };
 
 // The unit vector on the ground an agent faces: its forward axis projected and normalised ((1, 0) when it faces
-// straight up or down), without trigonometry.
+// straight up or down), without trigonometry. The forward axis q x̂ = (1 − 2(y² + z²), 2(xy + wz), ·) of the unit
+// quaternion, its ground length by a square root (both components are at most 1 in size, so std::hypot's guard
+// against overflow, several times slower, buys nothing; 10 million rows per 10,000 agents × 1,000 frames).
 std::pair<double, double> ground_facing(const Eigen::Quaterniond& q) {
-  const Eigen::Vector3d f = q * Eigen::Vector3d::UnitX();
-  const double length = std::hypot(f.x(), f.y());
-  if (length == 0.0) return {1.0, 0.0};
-  return {f.x() / length, f.y() / length};
+  const double fx = 1.0 - 2.0 * (q.y() * q.y() + q.z() * q.z()), fy = 2.0 * (q.x() * q.y() + q.w() * q.z());
+  const double length = std::sqrt(fx * fx + fy * fy);
+  if (!(length > 1e-150)) return {1.0, 0.0};
+  return {fx / length, fy / length};
 }
 
 // The rows, frame-major: blocks of frames made in parallel over agent ranges (each range's rows of a frame in

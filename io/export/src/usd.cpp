@@ -57,6 +57,14 @@ TimeCodes time_codes(const std::vector<double>& times) {
   return c;
 }
 
+// A tuple's opening, "(" for the first agent and ", (" after: characters put one by one (a text picked at run
+// time would be a copy call of its length, twice for every agent and frame).
+char* open_tuple(char* out, std::size_t agent) {
+  if (agent) *out++ = ',', *out++ = ' ';
+  *out++ = '(';
+  return out;
+}
+
 class UsdWriter {
  public:
   UsdWriter(const CrowdFile& crowd, detail::OutputFile& file, const ExportOptions& options)
@@ -69,7 +77,7 @@ class UsdWriter {
     time_samples("point3f[] positions", 40, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
       const Eigen::Vector3d p = poses.position(t, n);
       char* c = out.room(8 + 3 * detail::max_number_chars);
-      c = detail::put_text(c, n ? ", (" : "(");
+      c = open_tuple(c, n);
       c = detail::put_number(c, static_cast<float>(p.x()));
       c = detail::put_text(c, ", ");
       c = detail::put_number(c, static_cast<float>(p.y()));
@@ -81,7 +89,7 @@ class UsdWriter {
     time_samples("quath[] orientations", 32, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
       const Eigen::Quaterniond q = poses.facing(t, n);
       char* c = out.room(12 + 4 * detail::max_number_chars);
-      c = detail::put_text(c, n ? ", (" : "(");
+      c = open_tuple(c, n);
       c = detail::put_half(c, q.w());
       c = detail::put_text(c, ", ");
       c = detail::put_half(c, q.x());

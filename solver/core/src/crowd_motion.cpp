@@ -1,6 +1,7 @@
 #include <throng/core/crowd_motion.h>
 #include <throng/core/errors.h>
 
+#include <cmath>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -140,23 +141,36 @@ std::optional<Eigen::Vector3d> path_velocity(const CrowdMotion& m, std::size_t t
   return Eigen::Vector3d((m.position(b, n) - m.position(a, n)) / (m.times[b] - m.times[a]));
 }
 
+// |(x, y)|: sqrt(x² + y²) where the squares neither overflow nor lose digits to underflow (every velocity a crowd
+// has), std::hypot's careful scaling (several times slower) otherwise. The exporters ask this for every agent
+// and frame.
+namespace {
+double ground_length(double x, double y) {
+  const double squared = x * x + y * y;
+  if (squared >= 0x1p-900 && squared <= 0x1p900) return std::sqrt(squared);
+  return std::hypot(x, y);
+}
+}  // namespace
+
 Eigen::Quaterniond facing_along(const Eigen::Vector3d& d) {
-  const double ground = std::hypot(d.x(), d.y());
+  const double ground = ground_length(d.x(), d.y());
   if (ground == 0.0 && d.z() == 0.0) return Eigen::Quaterniond::Identity();
   if (d.z() == 0.0) {
     // A yaw θ about +z: (w, z) = (cos θ/2, sin θ/2), the unit bisector of +x and u = (cos θ, sin θ), found without
-    // trigonometry (the exporters ask this for every agent and frame). u + x̂ = 2 cos(θ/2) (cos θ/2, sin θ/2)
-    // loses its digits as θ → π, so for cos θ < 0 the bisector comes from u − x̂ = 2 sin(θ/2) (−sin θ/2, cos θ/2).
-    const double c = d.x() / ground, s = d.y() / ground;
-    double w, z;
-    if (c >= 0) {
-      const double norm = std::sqrt(2.0 * (1.0 + c));
-      w = (1.0 + c) / norm, z = s / norm;
-    } else {
-      const double norm = std::sqrt(2.0 * (1.0 - c));
-      const double sign = s < 0 ? -1.0 : 1.0;  // sign of sin(θ/2) = sign of θ in (−π, π]
-      w = sign * s / norm, z = sign * (1.0 - c) / norm;
-    }
+    // trigonometry (the exporters ask this for every agent and frame). With g = |d|: g(u + x̂) = (g + x, y) is
+    // along (cos θ/2, sin θ/2), but loses its digits as θ → π (x → −g), so for x < 0 the bisector comes from
+    // g(u − x̂) = (x − g, y), along (−sin θ/2, cos θ/2): (w, z) along sign(y) (y, g − x). Either way the larger
+    // component is h = g + |x| (no cancellation), and the pair is normalised by one square root. Branch-free (the
+    // two cases are picked by selects): successive agents' directions are unpredictable, and a mispredicted branch
+    // here cost more than the arithmetic.
+    if (ground > 0x1p400 || ground < 0x1p-400) return facing_along(Eigen::Vector3d(d.x() / ground, d.y() / ground, 0.0));  // h² below
+    const double x = d.x(), y = d.y();
+    const double h = ground + std::abs(x);
+    const double sign = y < 0 ? -1.0 : 1.0;  // sign of sin(θ/2) = sign of θ in (−π, π]
+    const bool ahead = x >= 0;
+    const double a = ahead ? h : std::abs(y), b = ahead ? y : sign * h;
+    const double inverse = 1.0 / std::sqrt(h * h + y * y);
+    const double w = a * inverse, z = b * inverse;
     return Eigen::Quaterniond(w, 0.0, 0.0, z);
   }
   const double yaw = ground > 0.0 ? std::atan2(d.y(), d.x()) : 0.0;
@@ -166,10 +180,11 @@ Eigen::Quaterniond facing_along(const Eigen::Vector3d& d) {
 }
 
 std::int32_t path_action(const CrowdMotion& m, std::size_t t, std::size_t n, const PathPoseRule& rule) {
+  // Squared speeds against squared thresholds: the same test as PathFacing's, without a square root.
   const auto v = path_velocity(m, t, n);
-  const double speed = v ? v->norm() : 0.0;
-  if (speed < rule.standing_speed) return action_stand;
-  return speed >= rule.running_speed ? action_run : action_walk;
+  const double speed2 = v ? v->squaredNorm() : 0.0;
+  if (speed2 < rule.standing_speed * rule.standing_speed) return action_stand;
+  return speed2 >= rule.running_speed * rule.running_speed ? action_run : action_walk;
 }
 
 PathFacing::PathFacing(const CrowdMotion& motion, PathPoseRule rule)
@@ -178,7 +193,7 @@ PathFacing::PathFacing(const CrowdMotion& motion, PathPoseRule rule)
 
 std::optional<Eigen::Quaterniond> PathFacing::moving_facing(std::size_t t, std::size_t n) const {
   const auto v = path_velocity(motion_, t, n);
-  if (!v || v->norm() < rule_.standing_speed) return std::nullopt;
+  if (!v || v->squaredNorm() < rule_.standing_speed * rule_.standing_speed) return std::nullopt;
   return facing_along(*v);
 }
 
