@@ -108,6 +108,8 @@ class GltfWriter {
  private:
   // A JSON array built item by item as text, so a crowd of 10,000 agents costs its text (~1 kB per agent), not
   // a document tree ten times that.
+  // A part of the list may be built on its own from the index its first item will have (count), and appended:
+  // the text is the same as pushing its items one by one.
   struct JsonList {
     std::string text;
     std::size_t count = 0;
@@ -116,7 +118,15 @@ class GltfWriter {
       text += item.dump();
       return count++;
     }
+    void append(const JsonList& part) {
+      text += part.text;
+      count = part.count;
+    }
     [[nodiscard]] std::string array() const { return "[" + text + "]"; }
+  };
+  // The per-agent parts of the lists, for a range of agents.
+  struct AgentLists {
+    JsonList accessors, samplers, channels, nodes;
   };
 
   // The JSON document; fills the BIN layout (offsets and bin_size_) as it goes.
@@ -154,37 +164,34 @@ class GltfWriter {
     std::size_t keys_bytes = 0;
     for (std::size_t n = 0; n < N; ++n) keys_bytes += keys_[n].size() * 16;
     const std::size_t keys_view = keys_bytes ? view(keys_bytes, 0) : 0;
-    std::size_t key_cursor = 0;
-    detail::AgentPoses first(m_, options_.pose);
+    // Agent ranges in parallel (their items are most of the document's text), each from the indices and key
+    // offset its first agent's items take (prefix counts: 2 accessors, samplers and channels an agent, 2, 1 and 1
+    // more with a scale channel), appended in range order: the text of one pass over the agents.
+    std::vector<std::size_t> keyed_before(N + 1, 0), key_bytes_before(N + 1, 0);
     for (std::size_t n = 0; n < N; ++n) {
-      const std::size_t base = n * T * 28;
-      const std::size_t translation = accessor(outputs_view, base, float_type, T, "VEC3");
-      const std::size_t rotation = accessor(outputs_view, base + T * 12, float_type, T, "VEC4");
-      const std::size_t node = n;
-      channels.push({{"sampler", samplers.push({{"input", times}, {"output", translation}, {"interpolation", "LINEAR"}})},
-                     {"target", {{"node", node}, {"path", "translation"}}}});
-      channels.push({{"sampler", samplers.push({{"input", times}, {"output", rotation}, {"interpolation", "LINEAR"}})},
-                     {"target", {{"node", node}, {"path", "rotation"}}}});
-      const float r = static_cast<float>(m_.radii[n]);
-      if (!keys_[n].empty()) {
-        const std::size_t K = keys_[n].size();
-        const std::size_t input = accessor(keys_view, key_cursor, float_type, K, "SCALAR",
-                                           json::array({static_cast<float>(m_.times[keys_[n].front()] - m_.times.front())}),
-                                           json::array({static_cast<float>(m_.times[keys_[n].back()] - m_.times.front())}));
-        const std::size_t output = accessor(keys_view, key_cursor + K * 4, float_type, K, "VEC3");
-        key_cursor += K * 16;
-        channels.push({{"sampler", samplers.push({{"input", input}, {"output", output}, {"interpolation", "STEP"}})},
-                       {"target", {{"node", node}, {"path", "scale"}}}});
+      keyed_before[n + 1] = keyed_before[n] + (keys_[n].empty() ? 0 : 1);
+      key_bytes_before[n + 1] = key_bytes_before[n] + keys_[n].size() * 16;
+    }
+    detail::AgentPoses first(m_, options_.pose);  // each range asks its own agents' frame 0 only
+    constexpr std::size_t ranges = 16;
+    const std::size_t step = (N + ranges - 1) / ranges;
+    std::vector<AgentLists> parts(ranges);
+    const std::size_t agent_accessors = accessors.count;
+    parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
+      for (std::size_t r = r0; r < r1; ++r) {
+        const std::size_t n0 = std::min(N, r * step), n1 = std::min(N, (r + 1) * step);
+        AgentLists& part = parts[r];
+        part.accessors.count = agent_accessors + 2 * n0 + 2 * keyed_before[n0];
+        part.samplers.count = part.channels.count = 2 * n0 + keyed_before[n0];
+        part.nodes.count = n0;
+        for (std::size_t n = n0; n < n1; ++n) agent_items(n, times, outputs_view, keys_view, key_bytes_before[n], first, part);
       }
-      const Eigen::Vector3d p = to_gltf(first.position(0, n));
-      const Eigen::Quaterniond q = node_rotation(first.facing(0, n));
-      const float s = m_.present(0, n) ? r : 0.0f;
-      nodes.push({{"name", "agent_" + std::to_string(m_.ids[n])},
-                  {"mesh", 0},
-                  {"translation", {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}},
-                  {"rotation", {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())}},
-                  {"scale", {s, s, s}},
-                  {"extras", {{"id", m_.ids[n]}, {"species", m_.species[n]}, {"radius", m_.radii[n]}}}});
+    });
+    for (const AgentLists& part : parts) {
+      accessors.append(part.accessors);
+      samplers.append(part.samplers);
+      channels.append(part.channels);
+      nodes.append(part.nodes);
     }
     std::string node_list;
     for (std::size_t n = 0; n < N; ++n) node_list += (n ? "," : "") + std::to_string(n);
@@ -205,6 +212,46 @@ class GltfWriter {
            ",\"animations\":[{\"name\":\"crowd\",\"samplers\":" + samplers.array() + ",\"channels\":" + channels.array() +
            "}],\"accessors\":" + accessors.array() + ",\"bufferViews\":" + views.array() +
            ",\"buffers\":[{\"byteLength\":" + std::to_string(bin_size_) + "}]}";
+  }
+
+  // Agent n's items: its translation and rotation accessors, samplers and channels, its scale keys' (when it is
+  // absent somewhere, at key_offset in the keys' view), and its node.
+  void agent_items(std::size_t n, std::size_t times, std::size_t outputs_view, std::size_t keys_view, std::size_t key_offset,
+                   detail::AgentPoses& first, AgentLists& out) const {
+    const std::size_t T = m_.frame_count();
+    auto accessor = [&](std::size_t view_index, std::size_t offset, std::size_t count, const char* shape, const json& min = nullptr,
+                        const json& max = nullptr) {
+      json a{{"bufferView", view_index}, {"byteOffset", offset}, {"componentType", float_type}, {"count", count}, {"type", shape}};
+      if (!min.is_null()) a["min"] = min, a["max"] = max;
+      return out.accessors.push(a);
+    };
+    const std::size_t base = n * T * 28;
+    const std::size_t translation = accessor(outputs_view, base, T, "VEC3");
+    const std::size_t rotation = accessor(outputs_view, base + T * 12, T, "VEC4");
+    const std::size_t node = n;
+    out.channels.push({{"sampler", out.samplers.push({{"input", times}, {"output", translation}, {"interpolation", "LINEAR"}})},
+                       {"target", {{"node", node}, {"path", "translation"}}}});
+    out.channels.push({{"sampler", out.samplers.push({{"input", times}, {"output", rotation}, {"interpolation", "LINEAR"}})},
+                       {"target", {{"node", node}, {"path", "rotation"}}}});
+    const float r = static_cast<float>(m_.radii[n]);
+    if (!keys_[n].empty()) {
+      const std::size_t K = keys_[n].size();
+      const std::size_t input = accessor(keys_view, key_offset, K, "SCALAR",
+                                         json::array({static_cast<float>(m_.times[keys_[n].front()] - m_.times.front())}),
+                                         json::array({static_cast<float>(m_.times[keys_[n].back()] - m_.times.front())}));
+      const std::size_t output = accessor(keys_view, key_offset + K * 4, K, "VEC3");
+      out.channels.push({{"sampler", out.samplers.push({{"input", input}, {"output", output}, {"interpolation", "STEP"}})},
+                         {"target", {{"node", node}, {"path", "scale"}}}});
+    }
+    const Eigen::Vector3d p = to_gltf(first.position(0, n));
+    const Eigen::Quaterniond q = node_rotation(first.facing(0, n));
+    const float s = m_.present(0, n) ? r : 0.0f;
+    out.nodes.push({{"name", "agent_" + std::to_string(m_.ids[n])},
+                    {"mesh", 0},
+                    {"translation", {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())}},
+                    {"rotation", {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()), static_cast<float>(q.w())}},
+                    {"scale", {s, s, s}},
+                    {"extras", {{"id", m_.ids[n]}, {"species", m_.species[n]}, {"radius", m_.radii[n]}}}});
   }
 
   static Eigen::Vector3f local_vertex(const Eigen::Vector3f& body) { return (body_to_local.cast<float>() * body); }
