@@ -180,11 +180,10 @@ Eigen::Quaterniond facing_along(const Eigen::Vector3d& d) {
 }
 
 std::int32_t path_action(const CrowdMotion& m, std::size_t t, std::size_t n, const PathPoseRule& rule) {
-  // Squared speeds against squared thresholds: the same test as PathFacing's, without a square root.
   const auto v = path_velocity(m, t, n);
-  const double speed2 = v ? v->squaredNorm() : 0.0;
-  if (speed2 < rule.standing_speed * rule.standing_speed) return action_stand;
-  return speed2 >= rule.running_speed * rule.running_speed ? action_run : action_walk;
+  const double speed = v ? v->norm() : 0.0;
+  if (speed < rule.standing_speed) return action_stand;
+  return speed >= rule.running_speed ? action_run : action_walk;
 }
 
 PathFacing::PathFacing(const CrowdMotion& motion, PathPoseRule rule)
@@ -193,7 +192,7 @@ PathFacing::PathFacing(const CrowdMotion& motion, PathPoseRule rule)
 
 std::optional<Eigen::Quaterniond> PathFacing::moving_facing(std::size_t t, std::size_t n) const {
   const auto v = path_velocity(motion_, t, n);
-  if (!v || v->squaredNorm() < rule_.standing_speed * rule_.standing_speed) return std::nullopt;
+  if (!v || v->norm() < rule_.standing_speed) return std::nullopt;
   return facing_along(*v);
 }
 
