@@ -5,11 +5,10 @@
 // is a few blocks, never the crowd.
 #pragma once
 
+#include "agent_ranges.h"
 #include "block_stream.h"
 #include "output_file.h"
 #include "text_numbers.h"
-
-#include <throng/core/parallel.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -28,11 +27,9 @@ struct FrameTextOptions {
 template <class Head, class Item, class Tail>
 void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents, const FrameTextOptions& options, Head head,
                        Item item, Tail tail) {
-  constexpr std::size_t ranges = 16;
-  const std::size_t step = (agents + ranges - 1) / ranges;
   const std::size_t frame_bytes = std::max<std::size_t>(1, agents * options.bytes_per_agent);
   const std::size_t per_block = std::clamp<std::size_t>(options.block_bytes / frame_bytes, 1, std::max<std::size_t>(frames, 1));
-  constexpr std::size_t pieces_per_frame = ranges + 2;  // head, the ranges, tail
+  constexpr std::size_t pieces_per_frame = agent_ranges + 2;  // head, the ranges, tail
   struct Block {
     std::vector<TextBuffer> pieces;
     std::size_t frames = 0;
@@ -50,15 +47,12 @@ void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents,
     for (auto& piece : block.pieces) piece.clear();
     for (std::size_t f = 0; f < count; ++f) {
       head(t0 + f, block.pieces[f * pieces_per_frame]);
-      tail(t0 + f, block.pieces[f * pieces_per_frame + ranges + 1]);
+      tail(t0 + f, block.pieces[f * pieces_per_frame + agent_ranges + 1]);
     }
-    parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t r = r0; r < r1; ++r) {
-        const std::size_t n0 = r * step, n1 = std::min(agents, (r + 1) * step);
-        for (std::size_t f = 0; f < count; ++f) {
-          TextBuffer& piece = block.pieces[f * pieces_per_frame + 1 + r];
-          for (std::size_t n = n0; n < n1; ++n) item(t0 + f, n, piece);
-        }
+    for_agent_ranges(agents, [&](std::size_t r, std::size_t n0, std::size_t n1) {
+      for (std::size_t f = 0; f < count; ++f) {
+        TextBuffer& piece = block.pieces[f * pieces_per_frame + 1 + r];
+        for (std::size_t n = n0; n < n1; ++n) item(t0 + f, n, piece);
       }
     });
     stream.submit();

@@ -4,6 +4,7 @@
 // somewhere (key times, float[K], and scales, float[K][3]). Every size is known before the first byte (the keys
 // come from a pass over presence), so the JSON goes first and the data streams after it, agent group by group.
 #include "agent_poses.h"
+#include "agent_ranges.h"
 #include "block_stream.h"
 #include "output_file.h"
 #include "proxy_mesh.h"
@@ -161,9 +162,6 @@ class GltfWriter {
     const std::size_t mesh_indices = accessor(indices_view, 0, ushort_type, mesh.triangles.size() * 3, "SCALAR");
     // Per-agent animation outputs, agent-major.
     const std::size_t outputs_view = view(N * T * 28, 0);
-    std::size_t keys_bytes = 0;
-    for (std::size_t n = 0; n < N; ++n) keys_bytes += keys_[n].size() * 16;
-    const std::size_t keys_view = keys_bytes ? view(keys_bytes, 0) : 0;
     // Agent ranges in parallel (their items are most of the document's text), each from the indices and key
     // offset its first agent's items take (prefix counts: 2 accessors, samplers and channels an agent, 2, 1 and 1
     // more with a scale channel), appended in range order: the text of one pass over the agents.
@@ -172,20 +170,16 @@ class GltfWriter {
       keyed_before[n + 1] = keyed_before[n] + (keys_[n].empty() ? 0 : 1);
       key_bytes_before[n + 1] = key_bytes_before[n] + keys_[n].size() * 16;
     }
+    const std::size_t keys_view = key_bytes_before[N] ? view(key_bytes_before[N], 0) : 0;
     detail::AgentPoses first(m_, options_.pose);  // each range asks its own agents' frame 0 only
-    constexpr std::size_t ranges = 16;
-    const std::size_t step = (N + ranges - 1) / ranges;
-    std::vector<AgentLists> parts(ranges);
+    std::vector<AgentLists> parts(detail::agent_ranges);
     const std::size_t agent_accessors = accessors.count;
-    parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t r = r0; r < r1; ++r) {
-        const std::size_t n0 = std::min(N, r * step), n1 = std::min(N, (r + 1) * step);
-        AgentLists& part = parts[r];
-        part.accessors.count = agent_accessors + 2 * n0 + 2 * keyed_before[n0];
-        part.samplers.count = part.channels.count = 2 * n0 + keyed_before[n0];
-        part.nodes.count = n0;
-        for (std::size_t n = n0; n < n1; ++n) agent_items(n, times, outputs_view, keys_view, key_bytes_before[n], first, part);
-      }
+    detail::for_agent_ranges(N, [&](std::size_t r, std::size_t n0, std::size_t n1) {
+      AgentLists& part = parts[r];
+      part.accessors.count = agent_accessors + 2 * n0 + 2 * keyed_before[n0];
+      part.samplers.count = part.channels.count = 2 * n0 + keyed_before[n0];
+      part.nodes.count = n0;
+      for (std::size_t n = n0; n < n1; ++n) agent_items(n, times, outputs_view, keys_view, key_bytes_before[n], first, part);
     });
     for (const AgentLists& part : parts) {
       accessors.append(part.accessors);
@@ -290,22 +284,17 @@ class GltfWriter {
       previous.assign(G, Eigen::Vector4d::Zero());
       // Agent ranges in parallel, each walking every frame over its own agents (their positions at a frame are
       // contiguous); each agent's values land in its own slots, so the bytes do not depend on the thread count.
-      constexpr std::size_t ranges = 16;
-      const std::size_t step = (G + ranges - 1) / ranges;
-      parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
-        for (std::size_t r = r0; r < r1; ++r) {
-          const std::size_t j0 = r * step, j1 = std::min(G, (r + 1) * step);
-          for (std::size_t t = 0; t < T; ++t) {
-            for (std::size_t j = j0; j < j1; ++j) {
-              const Eigen::Vector3d p = to_gltf(poses.position(t, n0 + j));
-              Eigen::Vector4d q = node_rotation_map * poses.facing(t, n0 + j).coeffs();
-              if (q.dot(previous[j]) < 0) q = -q;  // previous is 0 at frame 0
-              previous[j] = q;
-              float* tr = buffer.data() + j * per_agent + t * 3;
-              float* ro = buffer.data() + j * per_agent + T * 3 + t * 4;
-              for (int k = 0; k < 3; ++k) tr[k] = static_cast<float>(p[k]);
-              for (int k = 0; k < 4; ++k) ro[k] = static_cast<float>(q[k]);
-            }
+      detail::for_agent_ranges(G, [&](std::size_t, std::size_t j0, std::size_t j1) {
+        for (std::size_t t = 0; t < T; ++t) {
+          for (std::size_t j = j0; j < j1; ++j) {
+            const Eigen::Vector3d p = to_gltf(poses.position(t, n0 + j));
+            Eigen::Vector4d q = node_rotation_map * poses.facing(t, n0 + j).coeffs();
+            if (q.dot(previous[j]) < 0) q = -q;  // previous is 0 at frame 0
+            previous[j] = q;
+            float* tr = buffer.data() + j * per_agent + t * 3;
+            float* ro = buffer.data() + j * per_agent + T * 3 + t * 4;
+            for (int k = 0; k < 3; ++k) tr[k] = static_cast<float>(p[k]);
+            for (int k = 0; k < 4; ++k) ro[k] = static_cast<float>(q[k]);
           }
         }
       });

@@ -1,10 +1,10 @@
 #include "agent_poses.h"
+#include "agent_ranges.h"
 #include "block_stream.h"
 #include "frame_rate.h"
 #include "walkable_area.h"
 
 #include <throng/core/errors.h>
-#include <throng/core/parallel.h>
 #include <throng/io/atomic_output.h>
 #include <throng/io/export/pedpy.h>
 #include <throng/io/hdf5.h>
@@ -100,8 +100,7 @@ std::pair<double, double> ground_facing(const Eigen::Quaterniond& q) {
 // partial chunk would be read back and rewritten.
 void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& trajectory) {
   const std::size_t N = m.agent_count(), T = m.frame_count(), chunk = chunk_rows;
-  constexpr std::size_t ranges = 16;
-  const std::size_t step = (N + ranges - 1) / ranges;
+  constexpr std::size_t ranges = detail::agent_ranges;
   const std::size_t per_block = std::clamp<std::size_t>(chunk / std::max<std::size_t>(N, 1), 1, std::max<std::size_t>(T, 1));
   struct Block {
     std::vector<std::vector<Row>> parts;  // [frame in block][range]
@@ -135,19 +134,16 @@ void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& 
     Block& block = stream.next();
     block.frames = count;
     if (block.parts.size() < count * ranges) block.parts.resize(count * ranges);
-    parallel_for(ranges, 1, [&](std::size_t r0, std::size_t r1) {
-      for (std::size_t r = r0; r < r1; ++r) {
-        const std::size_t n0 = r * step, n1 = std::min(N, (r + 1) * step);
-        for (std::size_t f = 0; f < count; ++f) {
-          std::vector<Row>& part = block.parts[f * ranges + r];
-          part.clear();
-          const std::size_t t = t0 + f;
-          for (std::size_t n = n0; n < n1; ++n) {
-            if (!m.present(t, n)) continue;
-            const Eigen::Vector3d p = m.position(t, n);
-            const auto [ox, oy] = ground_facing(poses.facing(t, n));
-            part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), ox, oy});
-          }
+    detail::for_agent_ranges(N, [&](std::size_t r, std::size_t n0, std::size_t n1) {
+      for (std::size_t f = 0; f < count; ++f) {
+        std::vector<Row>& part = block.parts[f * ranges + r];
+        part.clear();
+        const std::size_t t = t0 + f;
+        for (std::size_t n = n0; n < n1; ++n) {
+          if (!m.present(t, n)) continue;
+          const Eigen::Vector3d p = m.position(t, n);
+          const auto [ox, oy] = ground_facing(poses.facing(t, n));
+          part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), ox, oy});
         }
       }
     });
