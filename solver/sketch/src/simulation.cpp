@@ -4,7 +4,6 @@
 #include <throng/core/errors.h>
 #include <throng/core/obstacle.h>
 #include <throng/core/parallel.h>
-#include <throng/core/random.h>
 #include <throng/sketch/sketch.h>
 
 #include <algorithm>
@@ -12,7 +11,6 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <mutex>
 #include <numbers>
@@ -163,7 +161,8 @@ struct Simulation::Impl {
   // True when a standing (arrived) agent is closer than r to p (state at the step's start).
   [[nodiscard]] bool touches_standing(std::size_t slot, const Eigen::Vector2d& p, double r) const;
   // Advances the agents in grid slots [begin, end) from `now` into `next` over [t0, t1]. Writes only those
-  // agents' entries of `next` and `arrival`.
+  // agents' entries of `next`, `arrival`, `fastest` and `in_grid`; adds their obstacle contacts left unresolved
+  // to `failures` and their states to `gathered`.
   void advance(std::size_t begin, std::size_t end, double t0, double t1, State& next, std::size_t& failures,
                Summary& gathered);
 
@@ -385,14 +384,16 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   // the moves, the facings, then the targets. A move and a facing are each a chain of square roots and divisions
   // per agent: in short loops of their own the processor overlaps several agents' chains, where in one loop with
   // the searches it could not (bench/sketch BM_Step, 10,000 agents on 1 thread: 293 → 209 ms). Each pass does for
-  // an agent exactly what the single loop did, in the same order, so the bits are the same.
+  // an agent the same operations in the same order as one loop over the agents would (each pass reads only the
+  // state at the step's start, the grid and the block's own entries), so the bits are the same.
   enum class Move : std::uint8_t { along_force, make_room, stay };
-  constexpr std::size_t block = 64;
-  std::array<Move, block> move{};
-  std::array<double, block> fx{}, fy{}, qx{}, qy{}, ux{}, uy{};
-  std::array<std::int8_t, block> sides{};
-  for (std::size_t first = begin; first < end; first += block) {
-    const std::size_t count = std::min(block, end - first);
+  constexpr std::size_t block_size = 64;
+  std::array<Move, block_size> move{};
+  std::array<double, block_size> fx{}, fy{};  // the force (walking) or the overlap (standing), pass 1
+  std::array<double, block_size> qx{}, qy{}, ux{}, uy{};  // the new position and walking velocity, pass 2
+  std::array<std::int8_t, block_size> sides{};  // the side round an obstacle (walking), pass 1
+  for (std::size_t first = begin; first < end; first += block_size) {
+    const std::size_t count = std::min(block_size, end - first);
 
     // 1. The force on each walking agent (Eq. 14–20) and the overlap of each standing one.
     for (std::size_t i = 0; i < count; ++i) {
@@ -427,7 +428,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
         if (w_avoid > 0) force += detail::agent_repulsion(grid, slot, p, avoidance(j, k));
         if (has_obstacles && w_block > 0) force += obstacles.push(p, t0);
       } else {
-        move[i] = Move::stay;  // removed, or arrived and about to be
+        move[i] = Move::stay;  // removed, or arrived with EndOfPath::remove (removed in pass 4)
       }
       fx[i] = force.x();
       fy[i] = force.y();
@@ -475,7 +476,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       uy[i] = u.y();
     }
 
-    // 3. The facing (a chain of its own: apart from the move's, more agents' chains overlap).
+    // 3. The facing, in a loop of its own so that several agents' square-root chains overlap.
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint32_t j = order[first + i];
       const Eigen::Vector2d u(ux[i], uy[i]);
