@@ -33,6 +33,9 @@ struct GlobalOptions {
   bool json = false;                  ///< reports on stdout as one JSON object
   bool print_config = false;          ///< print the effective options as YAML and stop
   std::vector<std::string> set;       ///< key.path=value overrides applied to the job
+  /// How every crowd file the run writes stores its per-frame arrays (--compression deflate|none): deflated
+  /// (the default: 2x to 10x fewer bytes) or plain (no compression work; see README "Global options").
+  CrowdStorage storage = CrowdStorage::compressed;
 };
 
 class Context {

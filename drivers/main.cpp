@@ -64,6 +64,10 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet,-q", g.quiet, "No progress or information on stderr, only warnings and errors");
   app.add_flag("--json", g.json, "Reports on stdout as JSON");
   app.add_flag("--print-config", g.print_config, "Print the effective options as YAML and stop");
+  app.add_option_function<std::string>(
+         "--compression", [&g](const std::string& codec) { g.storage = codec == "none" ? CrowdStorage::plain : CrowdStorage::compressed; },
+         "How crowd files store their frames: deflate (the default, smaller) or none (faster to write)")
+      ->check(CLI::IsMember({"deflate", "none"}));
   app.add_option("--set", g.set, "Override a job option: key.path=value (repeatable)");
 
   std::vector<std::unique_ptr<cli::Command>> commands = cli::all_commands();

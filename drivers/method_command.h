@@ -213,7 +213,9 @@ class MethodCommand : public Command {
   /// Adds to the printed report what the command did besides the method's output (split's other part).
   virtual void amend(Report&, const Run&) {}
   /// Writes the output (rank 0) with its record.
-  virtual void write(const CrowdFile& out, const ExtraWriter& record, const Run&, Context&) { write_crowd_file(output_, out, record); }
+  virtual void write(const CrowdFile& out, const ExtraWriter& record, const Run&, Context& context) {
+    write_crowd_file(output_, out, record, context.global.storage);
+  }
 
   /// Writes a method's record: its data, then its report's fields, into /parameters/throng/<record>.
   ExtraWriter record_writer(std::shared_ptr<const Run> run, std::shared_ptr<const ReportFields> fields) const {

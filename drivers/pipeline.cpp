@@ -300,7 +300,7 @@ std::optional<Report> run_pipeline(const std::filesystem::path& job_path, const 
       for (const CrowdFile* c : inputs) credits.insert(credits.end(), c->provenance.credits.begin(), c->provenance.credits.end());
       credits.insert(credits.end(), result->crowd.provenance.credits.begin(), result->crowd.provenance.credits.end());
       result->crowd.provenance = context.provenance(job.yaml(), {job_path.string()}, credits);
-      write_crowd_file(o->as_string(), result->crowd, result->extra);
+      write_crowd_file(o->as_string(), result->crowd, result->extra, context.global.storage);
       context.info(label + ": wrote " + o->as_string());
     }
     const auto n = step.find("name");

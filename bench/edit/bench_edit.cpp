@@ -14,7 +14,9 @@
 // peak resident set so far (max_rss_MB: meaningful for the largest case of a run). Iterative drag cases also
 // report the last drag's difference from the direct solve of the same request (error_m: the largest distance of a
 // sample position; computed after the timing, for crowds of at most --edit_exact_max agents, 1,000 by default:
-// the direct factor of 3,000 agents does not fit 24 GB), its CG iterations and their error estimate.
+// the direct factor of 3,000 agents does not fit 24 GB), its CG iterations and their error estimate, and over the
+// timed drags the fastest and slowest (drag_fastest_s, drag_slowest_s) and the most CG iterations (iterations_most):
+// the first drags of a gesture take more iterations than the later ones, whose start the earlier solutions give.
 // PETSc on 2 ranks:  mpiexec -np 2 bench_edit --benchmark_filter=petsc ...  (iteration counts are fixed so the
 // ranks' collective solves line up; only rank 0 prints).
 // Sessions (`throng edit --session`, issue 16: each drag after the first ≤ 0.1 s at 300 agents, ≤ 0.03 s on the
@@ -37,8 +39,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -175,10 +180,21 @@ void drag(benchmark::State& state, int agents, const std::string& method) {
     // it takes a core and the allocator's lock from the solver's two threads.
     const Eigen::Matrix<double, Eigen::Dynamic, 2>* last = next_drag();
     const double peak = watch.stop();
+    // The spread over the gesture: a drag's CG iterations (and so its time) fall as the solution history grows.
+    double fastest = std::numeric_limits<double>::infinity(), slowest = 0;
+    int most_iterations = 0;
     for (auto _ : state) {
+      const auto drag_start = std::chrono::steady_clock::now();
       last = next_drag();
       benchmark::DoNotOptimize(last->data());
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - drag_start).count();
+      fastest = std::min(fastest, seconds);
+      slowest = std::max(slowest, seconds);
+      most_iterations = std::max(most_iterations, editor.report().iterations);
     }
+    state.counters["drag_fastest_s"] = fastest;
+    state.counters["drag_slowest_s"] = slowest;
+    state.counters["iterations_most"] = most_iterations;
     describe(state, editor.report());
     memory_counters(state, held, peak);
     state.counters["refactorisations"] = editor.report().factorizations - 2;

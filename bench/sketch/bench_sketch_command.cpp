@@ -6,6 +6,9 @@
 //   mode 0  before issue 19: every frame held in memory, then write_crowd_file (sketch::run + write_crowd_file)
 //   mode 1  written as it goes, each full block compressed and written on the simulating thread (the command)
 //   mode 2  written as it goes, blocks compressed and written by a writer thread beside the simulation
+//   mode 3  the frames made and dropped (the simulation and its sampling alone): the writing's cost in modes 1-2
+//           is their time less this one's
+// storage 0: shuffle + deflate (the default); 1: plain, the chunks unfiltered (`throng --compression none`).
 //
 // The crowd: N agents at 1 per m² in a square of side √N metres walking east between auxiliary lines (as
 // bench_sketch's BM_Step), 4 s of crowd time (100 steps) at 10 frames per second (41 frames).
@@ -64,6 +67,22 @@ CrowdFile file_of(Run& run) {
   return out;
 }
 
+// Frames made and dropped (mode 3): one frame's arrays, filled again and again.
+class DroppedFrames final : public FrameSink {
+ public:
+  void start(std::size_t agents, std::size_t, bool) override {
+    positions_.assign(3 * agents, 0.0);
+    orientations_.assign(4 * agents, 0.0);
+    actions_.assign(agents, 0);
+  }
+  Frame next_frame() override { return {positions_, orientations_, actions_}; }
+  void commit() override { benchmark::DoNotOptimize(positions_.data()); }
+
+ private:
+  std::vector<double> positions_, orientations_;
+  std::vector<std::int32_t> actions_;
+};
+
 ExtraWriter record(const Run& run) {
   return [&run](const h5::Group& parameters) { write_data(parameters.create_group("sketch"), run); };
 }
@@ -71,6 +90,7 @@ ExtraWriter record(const Run& run) {
 void BM_SketchCommand(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto mode = state.range(1);
+  const CrowdStorage storage = state.range(2) == 0 ? CrowdStorage::compressed : CrowdStorage::plain;
   const Job job = square_job(n);
   const ThreadLimit limit(2);
   const std::filesystem::path out =
@@ -85,10 +105,14 @@ void BM_SketchCommand(benchmark::State& state) {
       const auto written = std::chrono::steady_clock::now();
       agent_steps += run.result.step_count * n;
       const CrowdFile file = file_of(run);
-      write_crowd_file(out, file, record(run));
+      write_crowd_file(out, file, record(run), storage);
       writing += std::chrono::duration<double>(std::chrono::steady_clock::now() - written).count();
+    } else if (mode == 3) {
+      DroppedFrames sink;
+      Run run = sketch::run({}, job, quiet, Communicator::single(), sink, 0.0);
+      agent_steps += run.result.step_count * n;
     } else {
-      SketchFileSink sink(out, mode == 2);
+      SketchFileSink sink(out, mode == 2, storage);
       Run run = sketch::run({}, job, quiet, Communicator::single(), sink, 0.0);
       agent_steps += run.result.step_count * n;
       const CrowdFile file = file_of(run);
@@ -103,13 +127,15 @@ void BM_SketchCommand(benchmark::State& state) {
   state.counters["write_share"] = total > 0 ? writing / total : 0.0;
 }
 BENCHMARK(BM_SketchCommand)
-    ->ArgNames({"agents", "mode"})
-    ->ArgsProduct({{10000, 100000}, {0, 1, 2}})
+    ->ArgNames({"agents", "mode", "storage"})
+    ->ArgsProduct({{10000, 100000}, {0, 1, 2}, {0, 1}})
+    ->Args({10000, 3, 0})
+    ->Args({100000, 3, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_SketchCommand)
-    ->ArgNames({"agents", "mode"})
-    ->ArgsProduct({{1000000}, {0, 1}})
+    ->ArgNames({"agents", "mode", "storage"})
+    ->ArgsProduct({{1000000}, {0, 1}, {0, 1}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

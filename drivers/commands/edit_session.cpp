@@ -345,7 +345,7 @@ class EditSession {
       write_data(g, *run);
       ReportRecord record(g);
       fields->replay(record);
-    });
+    }, context_.global.storage);
   }
 
   Context& context_;

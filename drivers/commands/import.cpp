@@ -35,7 +35,7 @@ class ImportCommand final : public Command {
     ImportedCrowd imported = import_crowd(input_, options);
     CrowdFile& file = imported.crowd;
     file.provenance = context.provenance(effective, {input_.string()}, file.provenance.credits);
-    write_crowd_file(output_, file);
+    write_crowd_file(output_, file, {}, context.global.storage);
 
     const CrowdMotion& m = file.motion;
     std::set<std::int32_t> groups(m.species.begin(), m.species.end());

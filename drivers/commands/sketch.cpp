@@ -74,7 +74,7 @@ std::unique_ptr<Command> make_sketch_command() {
         try {
           // A step of `throng run` (no output of its own) and ranks other than the writer keep the crowd in memory.
           if (r.output.empty() || !r.context.writer()) return sketch::run(in, job, r.progress(), r.communicator());
-          SketchFileSink sink(r.output, write_in_background);
+          SketchFileSink sink(r.output, write_in_background, r.context.global.storage);
           const std::size_t agents =
               job.drawing.initial_positions.empty() ? job.options.agent_count : job.drawing.initial_positions.size();
           sketch::Run out = sketch::run(in, job, r.progress(), r.communicator(), sink,

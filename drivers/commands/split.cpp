@@ -58,7 +58,7 @@ class SplitCommand final : public MethodCommand<stitch::SplitJob, Parts> {
         write_data(g, other);
         ReportRecord fields(g);
         report_fields(other).replay(fields);
-      });
+      }, context.global.storage);
     } catch (...) {
       std::error_code ec;
       std::filesystem::remove(output_, ec);  // no half-done split: both parts or neither

@@ -1,6 +1,6 @@
 // CrowdStreamWriter (crowd_stream.h): the per-frame datasets of a crowd file filled block by block as the frames
-// are made, each block's chunks filtered by filter_chunks (the pipeline write_crowd_file uses), on the caller's
-// thread or on a writer thread of its own.
+// are made, each block's chunks filtered by filter_chunks (the pipeline write_crowd_file uses) or written as they
+// are (plain storage), on the caller's thread or on a writer thread of its own.
 #include "filtered_chunks.h"
 #include "hdf5_detail.h"
 
@@ -41,6 +41,25 @@ std::uint64_t chunk_rows_for(std::uint64_t row_bytes) { return std::max<std::uin
 std::uint64_t block_rows_for(std::uint64_t row_bytes) {
   const std::uint64_t chunk = chunk_rows_for(row_bytes);
   return chunk * std::max<std::uint64_t>(block_min_chunks, block_target_bytes / std::max<std::uint64_t>(1, chunk * row_bytes));
+}
+
+// Hands `rows` rows of `row_bytes` bytes as unfiltered chunks of `chunk_rows` rows to write(first row, bytes,
+// size): whole chunks straight from `data`, the edge chunk padded with zero bytes (libhdf5's fill), as
+// filter_chunks pads it before filtering.
+template <class Write>
+void write_plain_chunks(const unsigned char* data, std::uint64_t rows, std::uint64_t row_bytes, std::uint64_t chunk_rows,
+                        const Write& write) {
+  const std::uint64_t chunk_bytes = chunk_rows * row_bytes;
+  for (std::uint64_t row0 = 0; row0 < rows; row0 += chunk_rows) {
+    const std::uint64_t count = std::min(chunk_rows, rows - row0);
+    if (count == chunk_rows) {
+      write(row0, data + row0 * row_bytes, chunk_bytes);
+    } else {
+      std::vector<unsigned char> padded(chunk_bytes, 0);
+      std::memcpy(padded.data(), data + row0 * row_bytes, count * row_bytes);
+      write(row0, padded.data(), chunk_bytes);
+    }
+  }
 }
 
 // One per-frame dataset: /particles/trajectory/<element>/value, frames × N × width elements of element_size bytes.
@@ -137,10 +156,12 @@ struct CrowdStreamWriter::Impl {
     std::vector<hsize_t> chunk = max_dims;
     chunk[0] = chunk_rows;
     chunk[1] = N;
-    // hdf5.cpp's dataset_properties: exactly these filters in this order (filter_chunks applies them).
     h5::detail::check(H5Pset_chunk(props.id(), static_cast<int>(chunk.size()), chunk.data()), "cannot chunk " + where);
-    h5::detail::check(H5Pset_shuffle(props.id()), "cannot set the shuffle filter of " + where);
-    h5::detail::check(H5Pset_deflate(props.id(), h5::detail::deflate_level), "cannot set deflate on " + where);
+    if (shape.storage == CrowdStorage::compressed) {
+      // hdf5.cpp's dataset_properties: exactly these filters in this order (filter_chunks applies them).
+      h5::detail::check(H5Pset_shuffle(props.id()), "cannot set the shuffle filter of " + where);
+      h5::detail::check(H5Pset_deflate(props.id(), h5::detail::deflate_level), "cannot set deflate on " + where);
+    }
     s.set = h5::detail::checked(H5Dcreate2(element.id(), "value", s.file_type, space.id(), H5P_DEFAULT, props.id(), H5P_DEFAULT),
                                 "cannot create dataset " + where);
   }
@@ -161,14 +182,22 @@ struct CrowdStreamWriter::Impl {
       h5::detail::check(H5Dset_extent(s.set.id(), dims.data()), "cannot extend " + where);
     }
     if (job.rows > 0) {
-      h5::detail::ChunkedLayout layout{job.rows, s.row_bytes, s.chunk_rows, s.element_size, h5::detail::deflate_level};
       std::vector<hsize_t> offset(s.width > 1 ? 3 : 2, 0);
-      h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(s.buffer[job.buffer].data()), layout, where,
-                                [&](std::uint64_t first_row, const std::vector<unsigned char>& bytes) {
-                                  offset[0] = job.first_row + first_row;
-                                  h5::detail::check(H5Dwrite_chunk(s.set.id(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
-                                                    "cannot write " + where);
-                                });
+      // Filter mask 0: every filter of the dataset (shuffle then deflate, or none) was applied.
+      auto write_chunk = [&](std::uint64_t first_row, const void* bytes, std::size_t size) {
+        offset[0] = job.first_row + first_row;
+        h5::detail::check(H5Dwrite_chunk(s.set.id(), H5P_DEFAULT, 0, offset.data(), size, bytes), "cannot write " + where);
+      };
+      const unsigned char* rows = s.buffer[job.buffer].data();
+      if (shape.storage == CrowdStorage::compressed) {
+        h5::detail::ChunkedLayout layout{job.rows, s.row_bytes, s.chunk_rows, s.element_size, h5::detail::deflate_level};
+        h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(rows), layout, where,
+                                  [&](std::uint64_t first_row, const std::vector<unsigned char>& bytes) {
+                                    write_chunk(first_row, bytes.data(), bytes.size());
+                                  });
+      } else {
+        write_plain_chunks(rows, job.rows, s.row_bytes, s.chunk_rows, write_chunk);
+      }
     }
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard lock(mutex);

@@ -1,7 +1,7 @@
 // throng sketch writes its crowd file as the simulation goes (issue 19, io/crowd_stream.h): the streamed file
 // holds the same datasets, values, attributes and chunk shapes as the file written from memory (h5diff), for any
 // thread count and whether or not the frame count is known in advance; a run with far more frames than it could
-// hold in memory keeps its memory flat; a run stopped by a signal leaves the previous output (or none) and no
+// hold in memory keeps its memory flat; plain storage (--compression none) holds the same values unfiltered; a run stopped by a signal leaves the previous output (or none) and no
 // temporary.
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
@@ -104,6 +104,43 @@ void compare(const scenes::SketchScene& s, const std::string& name, std::size_t 
   CHECK(a.motion.frame_count() > 0);
 }
 
+// The same scene streamed with plain storage (`throng --compression none`): the values of the file written from
+// memory, every per-frame dataset chunked as the compressed stream's and unfiltered.
+void compare_plain(const scenes::SketchScene& s, const std::string& name, bool background) {
+  const auto dir = test::scratch_dir("cli_sketch_stream_plain_" + name);
+  const ThreadLimit limit(2);
+  {
+    SimulationResult memory = simulate(s.drawing, s.scene, s.options);
+    write_crowd_file(dir / "memory.h5", crowd_of(memory, s.scene), record);
+  }
+  for (const auto& [file, storage] : {std::pair{"compressed.h5", CrowdStorage::compressed}, std::pair{"plain.h5", CrowdStorage::plain}}) {
+    SketchFileSink sink(dir / file, background, storage);
+    NoProgress quiet;
+    SimulationResult streamed = simulate(s.drawing, s.scene, s.options, sink, quiet);
+    sink.take()->finish(crowd_of(streamed, s.scene), record);
+  }
+  INFO(name << (background ? " with a writer thread" : ""));
+  CHECK(shell("h5diff " + (dir / "memory.h5").string() + " " + (dir / "plain.h5").string() + " > " +
+              (dir / "h5diff.txt").string() + " 2>&1") == 0);
+  INFO(read_text(dir / "h5diff.txt"));
+  const CrowdFile a = read_crowd_file(dir / "memory.h5"), b = read_crowd_file(dir / "plain.h5");
+  CHECK(test::same_bits(a.motion.positions, b.motion.positions));
+  CHECK(test::same_bits(a.motion.orientations, b.motion.orientations));
+  CHECK(a.motion.actions == b.motion.actions);
+  // The plain file's layout is the compressed one's without its filters.
+  std::string compressed = storage_layout(dir / "compressed.h5"), expected;
+  std::istringstream lines(compressed);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("SHUFFLE") == std::string::npos && line.find("DEFLATE") == std::string::npos &&
+        line.find("LEVEL") == std::string::npos) {
+      expected += line + "\n";
+    }
+  }
+  CHECK(compressed.find("DEFLATE") != std::string::npos);
+  CHECK(storage_layout(dir / "plain.h5") == expected);
+  CHECK(std::filesystem::file_size(dir / "plain.h5") > std::filesystem::file_size(dir / "compressed.h5"));
+}
+
 using test::exit_status;
 using test::spawn;
 
@@ -139,6 +176,48 @@ TEST_CASE("a streamed sketch file equals the one written from memory") {
     compare(large, "large", 2, false);
     compare(large, "large_t1", 1, true);
   }
+}
+
+TEST_CASE("a sketch streamed with plain storage holds the same values, unfiltered") {
+  scenes::SketchScene paper = scenes::paper_experiment();
+  SECTION("until everyone arrives at 100 frames per second: extendible datasets, an edge chunk padded") {
+    paper.options.output_rate_hz = 100;
+    compare_plain(paper, "paper_100hz", false);
+    compare_plain(paper, "paper_100hz_writer", true);
+  }
+  SECTION("the large crowd for a fixed duration: final shapes") {
+    scenes::SketchScene large = scenes::large_crowd();
+    large.options.duration_s = 20;
+    compare_plain(large, "large", false);
+  }
+}
+
+TEST_CASE("throng --compression none: every crowd file it writes is unfiltered, with the same values") {
+  const auto dir = test::scratch_dir("cli_compression_none");
+  const auto s = [](const std::filesystem::path& p) { return p.string(); };
+  const std::string job = test::config("sketch-paper.yaml") + " --set agents.count=60 --set output_rate=50";
+  REQUIRE(test::run("--quiet sketch " + job + " -o " + s(dir / "deflate.h5")) == 0);
+  REQUIRE(test::run("--quiet --compression none sketch " + job + " -o " + s(dir / "none.h5")) == 0);
+  // A method command that writes from memory (method_command.h), the flag after the command.
+  REQUIRE(test::run("--quiet transform " + s(dir / "deflate.h5") + " --rotate 90 -o " + s(dir / "turned_deflate.h5")) == 0);
+  REQUIRE(test::run("--quiet transform " + s(dir / "deflate.h5") + " --rotate 90 --compression none -o " + s(dir / "turned_none.h5")) == 0);
+  for (const auto& [deflated, plain] : {std::pair{"deflate.h5", "none.h5"}, std::pair{"turned_deflate.h5", "turned_none.h5"}}) {
+    INFO(deflated << " against " << plain);
+    // h5diff compares values and attributes: the frames (the provenance's command line differs by the flag).
+    CHECK(shell("h5diff " + s(dir / deflated) + " " + s(dir / plain) + " /particles /particles > " + s(dir / "h5diff.txt") +
+                " 2>&1") == 0);
+    INFO(read_text(dir / "h5diff.txt"));
+    const std::string deflated_layout = storage_layout(dir / deflated), plain_layout = storage_layout(dir / plain);
+    CHECK(deflated_layout.find("DEFLATE") != std::string::npos);
+    CHECK(plain_layout.find("DEFLATE") == std::string::npos);
+    CHECK(plain_layout.find("SHUFFLE") == std::string::npos);
+    CHECK(std::filesystem::file_size(dir / plain) > std::filesystem::file_size(dir / deflated));
+  }
+  // An unknown codec is a usage error (exit 2) naming the choices, and writes nothing.
+  std::string output;
+  CHECK(test::run("--compression zstd sketch " + job + " -o " + s(dir / "zstd.h5"), &output) == 2);
+  CHECK_THAT(output, Catch::Matchers::Contains("--compression") && Catch::Matchers::Contains("deflate"));
+  CHECK_FALSE(std::filesystem::exists(dir / "zstd.h5"));
 }
 
 TEST_CASE("a streamed run holds its times and a few blocks and not its frames") {

@@ -15,7 +15,10 @@
 // Atomic as every output (atomic_output.h): the data goes to a temporary file, renamed onto the target by finish();
 // a writer destroyed before finish() (an error) or a signal removes it, leaving the previous file or none.
 //
-// Storage: compressed (shuffle + deflate at the level of every crowd file), the only storage a stream has.
+// Storage (`Shape::storage`): compressed, shuffle + deflate at the level of every crowd file (the chunks' bytes
+// are write_crowd_file's); or plain, the same chunks unfiltered (values equal, about 2x the bytes of deflate on
+// simulated frames, and no compression work: `throng --compression none`). A plain stream stays chunked (a dataset
+// that may grow along frames must be), where write_crowd_file's plain arrays are contiguous.
 //
 // Writing in the background: with `background`, full blocks are compressed and written by a thread of their own
 // while the caller fills the next block (two blocks per dataset, the caller waits when both are taken).
@@ -41,6 +44,7 @@ class CrowdStreamWriter {
     bool orientations = true;         ///< the file has the orientation element (frames × N × 4)
     bool actions = true;              ///< the file has the action element (frames × N)
     bool background = false;          ///< compress and write full blocks on a thread of their own
+    CrowdStorage storage = CrowdStorage::compressed;  ///< how the chunks are stored (see the top of this file)
   };
 
   /// Checks the target and creates the temporary file (IoError / ConfigError as AtomicOutput's).

@@ -16,8 +16,10 @@ namespace throng {
 
 class SketchFileSink final : public sketch::FrameSink {
  public:
-  /// `background`: full blocks compressed and written on a writer thread beside the simulation (CrowdStreamWriter::Shape).
-  SketchFileSink(std::filesystem::path target, bool background) : target_(std::move(target)), background_(background) {}
+  /// `background`: full blocks compressed and written on a writer thread beside the simulation; `storage`: how
+  /// the chunks are stored (both CrowdStreamWriter::Shape's).
+  SketchFileSink(std::filesystem::path target, bool background, CrowdStorage storage = CrowdStorage::compressed)
+      : target_(std::move(target)), background_(background), storage_(storage) {}
 
   void start(std::size_t agents, std::size_t frames, bool known) override {
     CrowdStreamWriter::Shape shape;
@@ -26,6 +28,7 @@ class SketchFileSink final : public sketch::FrameSink {
     shape.frames = frames;
     shape.frames_known = known;
     shape.background = background_;
+    shape.storage = storage_;
     writer_ = std::make_unique<CrowdStreamWriter>(target_, std::move(shape));
   }
   Frame next_frame() override {
@@ -40,6 +43,7 @@ class SketchFileSink final : public sketch::FrameSink {
  private:
   std::filesystem::path target_;
   bool background_;
+  CrowdStorage storage_;
   std::unique_ptr<CrowdStreamWriter> writer_;
 };
 
