@@ -231,6 +231,54 @@ TEST_CASE("a solution history starts the next solve at the Galerkin solution of 
   CHECK(history.size() == 3);
 }
 
+TEST_CASE("a guess joins the history's span in the Galerkin start") {
+  const int chains = 12, length = 30;
+  const ComplexSparse A = chain_system(chains, length, 21);
+  const Eigen::MatrixXcd dense(A);
+  const auto solve = [&](const ComplexBlock& b) { return ComplexBlock(dense.ldlt().solve(Eigen::MatrixXcd(b))); };
+  const auto product = [&](const ComplexBlock& x) {
+    ComplexBlock y;
+    multiply(A, x, y);
+    return y;
+  };
+  const auto energy = [&](const ComplexBlock& e) { return column_dots(e, product(e))[0].real(); };
+  const ComplexBlock b1 = random_block(A.rows(), 1, 22), b2 = random_block(A.rows(), 1, 23), b3 = random_block(A.rows(), 1, 24);
+  const ComplexBlock x1 = solve(b1), x2 = solve(b2), x3 = solve(b3);
+  SolutionHistory history(3);
+  ComplexBlock x, r, check;
+  // Nothing kept: the start is the guess scaled to the Galerkin optimum, exact when b is A times a multiple of it.
+  const ComplexBlock scaled = Complex(0.7, 0.4) * b3;
+  history.start(scaled, x3, product(x3), x, r);
+  CHECK(max_abs(ComplexBlock(x - Complex(0.7, 0.4) * x3)) < 1e-9 * max_abs(x3));
+  history.add(x1, product(x1));
+  history.add(x2, product(x2));
+  // b in span{A x1, A x2, A g}: the start with g solves it, the start without does not; r is b − A x.
+  const ComplexBlock b = Complex(0.3, -0.2) * b1 + Complex(-1.1, 0.4) * b2 + Complex(0.5, 0.9) * b3;
+  const ComplexBlock exact = solve(b);
+  history.start(b, x3, product(x3), x, r);
+  CHECK(max_abs(ComplexBlock(x - exact)) < 1e-9 * max_abs(exact));
+  residual(A, x, b, check);
+  CHECK(max_abs(ComplexBlock(r - check)) < 1e-9 * max_abs(b));
+  ComplexBlock plain, plain_r;
+  history.start(b, plain, plain_r);
+  CHECK(max_abs(ComplexBlock(plain - exact)) > 1e-3 * max_abs(exact));
+  // Any b: the larger span's start is at least as close in energy as the plain one, and as the guess alone.
+  const ComplexBlock b4 = random_block(A.rows(), 1, 25), g = random_block(A.rows(), 1, 26);
+  const ComplexBlock exact4 = solve(b4);
+  history.start(b4, g, product(g), x, r);
+  history.start(b4, plain, plain_r);
+  const Complex best = column_dots(g, b4)[0] / column_dots(g, product(g))[0];
+  CHECK(energy(ComplexBlock(x - exact4)) <= energy(ComplexBlock(plain - exact4)) * (1 + 1e-12));
+  CHECK(energy(ComplexBlock(x - exact4)) <= energy(ComplexBlock(best * g - exact4)) * (1 + 1e-12));
+  residual(A, x, b4, check);
+  CHECK(max_abs(ComplexBlock(r - check)) < 1e-9 * max_abs(b4));
+  // A guess in the span adds nothing: the start is the plain one.
+  const ComplexBlock in_span = Complex(2.0, -1.0) * x1 + Complex(0.5, 0.0) * x2;
+  history.start(b4, in_span, product(in_span), x, r);
+  CHECK(max_abs(ComplexBlock(x - plain)) < 1e-9 * max_abs(plain));
+  CHECK_THROWS_AS(history.start(b4, ComplexBlock(g.topRows(5)), product(g), x, r), std::invalid_argument);
+}
+
 TEST_CASE("an indefinite matrix, bad groups and a solve that cannot converge are errors") {
   const int chains = 6, length = 10;
   ComplexSparse A = chain_system(chains, length, 18);

@@ -106,6 +106,9 @@ struct IterativeSteps::Step {
   ComplexBlock warm;
   // Kept between drags so that a drag faults no new page in: right-hand side, A x, positions, CG's vectors.
   ComplexBlock rhs, ax;
+  // Step 2: a guess at the drag's solution from step 1's result and Q_FF times it (solve_step); with a basis,
+  // guess_product = Q_FF (Z − Z₁) from the precompute, so that Q_FF times the guess costs no product with Q_FF.
+  ComplexBlock guess, a_guess, guess_product;
   Eigen::VectorXcd z;
   linalg::CgWorkspace workspace;
   int iterations = 0;
@@ -115,10 +118,14 @@ struct IterativeSteps::Step {
     return linalg::conjugate_gradients(system.FF, *preconditioner, b, x, tolerance, max_iterations, workspace);
   }
 
-  // A drag's solve of Q_FF x = rhs into `warm`, started from the history's Galerkin start; the solution joins
-  // the history.
-  linalg::CgReport solve_drag(double tolerance, int max_iterations) {
-    history.start(rhs, warm, workspace.R);
+  // A drag's solve of Q_FF x = rhs into `warm`, started from the Galerkin start in the span of the history (and
+  // of `guess`, with `a_guess` = Q_FF guess, when with_guess); the solution joins the history.
+  linalg::CgReport solve_drag(double tolerance, int max_iterations, bool with_guess) {
+    if (with_guess) {
+      history.start(rhs, guess, a_guess, warm, workspace.R);
+    } else {
+      history.start(rhs, warm, workspace.R);
+    }
     workspace.residual_given = true;
     const auto report = solve(rhs, warm, {tolerance}, max_iterations);
     ax = rhs - workspace.R;  // Q_FF x, from the solve's own residual
@@ -257,6 +264,10 @@ void IterativeSteps::precompute(const ResolvedRequest& current) {
       const auto cg = step->solve(rhs, step->Z, tolerance, o.max_iterations);
       precompute_iterations_ = std::max(precompute_iterations_, cg.iterations);
     }
+    if (step2_) {
+      step2_->guess_product.resize(0, 0);
+      if (use_basis_ && nf > 0) linalg::multiply(step2_->system.FF, ComplexBlock(step2_->Z - step1_->Z), step2_->guess_product);
+    }
     basis_stale_ = false;
   }
   if (constraints_stale_) {
@@ -310,7 +321,13 @@ void IterativeSteps::solve_step(Step& step, const ResolvedRequest& current, cons
       z.noalias() -= step.Z * du;
       if (rhs != nullptr) {
         step.rhs = *rhs;
-        const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations);
+        // Step 2 starts near step 1's positions z₁ = z⁰ − Z₁ du (scale compensation moves them by less than the
+        // drag did): the part this solve adds would be z₁ − (z⁰ − Z du) = (Z − Z₁) du.
+        step.guess.resize(nf, 1);
+        step.guess.col(0) = step1_->z - z;
+        step.a_guess.resize(nf, 1);
+        step.a_guess.col(0).noalias() = step.guess_product * du;
+        const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations, true);
         step.iterations = cg.iterations;
         step.last_step = cg.error_estimate[0];
         z += step.warm.col(0);
@@ -325,7 +342,12 @@ void IterativeSteps::solve_step(Step& step, const ResolvedRequest& current, cons
       step.rhs.resize(nf, 1);
       step.rhs.col(0) = -(step.system.FP * dp);
       if (rhs != nullptr) step.rhs.col(0) += *rhs;
-      const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations);
+      // Step 2 starts near step 1's change (see above), at the price of one product with Q_FF.
+      if (rhs != nullptr) {
+        step.guess = step1_->warm;
+        linalg::multiply(step.system.FF, step.guess, step.a_guess);
+      }
+      const auto cg = step.solve_drag(o.position_tolerance, o.max_iterations, rhs != nullptr);
       step.iterations = cg.iterations;
       step.last_step = cg.error_estimate[0];
       z += step.warm.col(0);

@@ -64,6 +64,68 @@ void SolutionHistory::start(const ComplexBlock& b, ComplexBlock& x, ComplexBlock
   });
 }
 
+void SolutionHistory::start(const ComplexBlock& b, const ComplexBlock& g, const ComplexBlock& Ag, ComplexBlock& x,
+                            ComplexBlock& r) const {
+  if (b.cols() != 1 || g.cols() != 1 || g.rows() != b.rows() || Ag.rows() != b.rows() || Ag.cols() != 1) {
+    throw std::invalid_argument("SolutionHistory::start: shapes (one right-hand side and one guess)");
+  }
+  // The Galerkin start in span{V, g}: x = V y + η g with
+  //     [ I     Wᴴg ] [y]   [Vᴴb]
+  //     [ gᴴW   gᴴAg] [η] = [gᴴb]      (VᴴAV = I, VᴴAg = Wᴴg),
+  // solved by eliminating y. One pass gathers every inner product (fixed blocks of rows, summed in block order),
+  // one more writes x and r: V and W are read twice, as by the plain start.
+  const auto n = static_cast<std::size_t>(b.rows());
+  const auto k = static_cast<std::size_t>(size_);
+  const std::size_t width = 2 * k + 2;  // Vᴴb, Wᴴg, gᴴb, gᴴAg
+  const std::size_t blocks = (n + sum_block - 1) / sum_block;
+  std::vector<Complex> partial(blocks * width, Complex(0));
+  parallel_for(blocks, 1, [&](std::size_t b0, std::size_t b1) {
+    for (std::size_t block = b0; block < b1; ++block) {
+      Complex* sum = partial.data() + block * width;
+      const std::size_t end = std::min(n, (block + 1) * sum_block);
+      for (std::size_t i = block * sum_block; i < end; ++i) {
+        const auto row = static_cast<Eigen::Index>(i);
+        const Complex bi = b(row, 0), gi = g(row, 0);
+        for (std::size_t c = 0; c < k; ++c) {
+          sum[c] += conj_times(V_(row, static_cast<Eigen::Index>(c)), bi);
+          sum[k + c] += conj_times(W_(row, static_cast<Eigen::Index>(c)), gi);
+        }
+        sum[2 * k] += conj_times(gi, bi);
+        sum[2 * k + 1] += conj_times(gi, Ag(row, 0));
+      }
+    }
+  });
+  std::vector<Complex> total(width, Complex(0));
+  for (std::size_t block = 0; block < blocks; ++block)
+    for (std::size_t c = 0; c < width; ++c) total[c] += partial[block * width + c];
+  const Complex* vb = total.data();
+  const Complex* wg = total.data() + k;
+  const double energy = total[2 * k + 1].real();  // gᴴAg
+  // η from the Schur complement gᴴAg − |Wᴴg|² (g's energy outside the span); none when g lies in the span.
+  Complex numerator = total[2 * k];
+  double outside = energy;
+  for (std::size_t c = 0; c < k; ++c) {
+    numerator -= conj_times(wg[c], vb[c]);
+    outside -= std::norm(wg[c]);
+  }
+  const Complex eta = energy > 0 && outside > in_span * energy ? numerator / outside : Complex(0);
+  std::vector<Complex> y(k);
+  for (std::size_t c = 0; c < k; ++c) y[c] = vb[c] - times(wg[c], eta);
+  x.resize(b.rows(), 1);
+  r.resize(b.rows(), 1);
+  parallel_for(n, sum_block, [&](std::size_t begin, std::size_t end) {
+    for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
+      Complex xi = times(g(i, 0), eta), ai = times(Ag(i, 0), eta);
+      for (std::size_t c = 0; c < k; ++c) {
+        xi += times(V_(i, static_cast<Eigen::Index>(c)), y[c]);
+        ai += times(W_(i, static_cast<Eigen::Index>(c)), y[c]);
+      }
+      x(i, 0) = xi;
+      r(i, 0) = b(i, 0) - ai;
+    }
+  });
+}
+
 void SolutionHistory::add(const ComplexBlock& x, const ComplexBlock& Ax) {
   if (x.cols() != 1 || Ax.rows() != x.rows() || Ax.cols() != 1) throw std::invalid_argument("SolutionHistory::add: shapes");
   const Eigen::Index n = x.rows();

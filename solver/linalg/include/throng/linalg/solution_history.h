@@ -25,6 +25,11 @@ class SolutionHistory {
   /// x = the start for b (zero when nothing is kept) and r = b − A x. b, x, r: #unknowns by 1.
   void start(const ComplexBlock& b, ComplexBlock& x, ComplexBlock& r) const;
 
+  /// The same over the span of the kept solutions and one more direction g, a guess at this solution that the
+  /// caller has (with A g: one product with A). The Galerkin start in the larger span is at least as close in
+  /// the energy norm as either alone; g lying in the kept span adds nothing.
+  void start(const ComplexBlock& b, const ComplexBlock& g, const ComplexBlock& Ag, ComplexBlock& x, ComplexBlock& r) const;
+
   /// Keeps the solution x of a solve and A x (both #unknowns by 1).
   void add(const ComplexBlock& x, const ComplexBlock& Ax);
 
