@@ -72,45 +72,23 @@ void SolutionHistory::start(const ComplexBlock& b, const ComplexBlock& g, const 
   // The Galerkin start in span{V, g}: x = V y + η g with
   //     [ I     Wᴴg ] [y]   [Vᴴb]
   //     [ gᴴW   gᴴAg] [η] = [gᴴb]      (VᴴAV = I, VᴴAg = Wᴴg),
-  // solved by eliminating y. One pass gathers every inner product (fixed blocks of rows, summed in block order),
-  // one more writes x and r: V and W are read twice, as by the plain start.
+  // solved by eliminating y; every inner product in fixed blocks of rows (the same bits for any thread count).
   const auto n = static_cast<std::size_t>(b.rows());
   const auto k = static_cast<std::size_t>(size_);
-  const std::size_t width = 2 * k + 2;  // Vᴴb, Wᴴg, gᴴb, gᴴAg
-  const std::size_t blocks = (n + sum_block - 1) / sum_block;
-  std::vector<Complex> partial(blocks * width, Complex(0));
-  parallel_for(blocks, 1, [&](std::size_t b0, std::size_t b1) {
-    for (std::size_t block = b0; block < b1; ++block) {
-      Complex* sum = partial.data() + block * width;
-      const std::size_t end = std::min(n, (block + 1) * sum_block);
-      for (std::size_t i = block * sum_block; i < end; ++i) {
-        const auto row = static_cast<Eigen::Index>(i);
-        const Complex bi = b(row, 0), gi = g(row, 0);
-        for (std::size_t c = 0; c < k; ++c) {
-          sum[c] += conj_times(V_(row, static_cast<Eigen::Index>(c)), bi);
-          sum[k + c] += conj_times(W_(row, static_cast<Eigen::Index>(c)), gi);
-        }
-        sum[2 * k] += conj_times(gi, bi);
-        sum[2 * k + 1] += conj_times(gi, Ag(row, 0));
-      }
-    }
-  });
-  std::vector<Complex> total(width, Complex(0));
-  for (std::size_t block = 0; block < blocks; ++block)
-    for (std::size_t c = 0; c < width; ++c) total[c] += partial[block * width + c];
-  const Complex* vb = total.data();
-  const Complex* wg = total.data() + k;
-  const double energy = total[2 * k + 1].real();  // gᴴAg
+  const Eigen::VectorXcd vb = adjoint_times(V_, b), wg = adjoint_times(W_, g);
+  const Complex gb = column_dots(g, b)[0];
+  const double energy = column_dots(g, Ag)[0].real();  // gᴴAg
   // η from the Schur complement gᴴAg − |Wᴴg|² (g's energy outside the span); none when g lies in the span.
-  Complex numerator = total[2 * k];
+  Complex numerator = gb;
   double outside = energy;
   for (std::size_t c = 0; c < k; ++c) {
-    numerator -= conj_times(wg[c], vb[c]);
-    outside -= std::norm(wg[c]);
+    const auto i = static_cast<Eigen::Index>(c);
+    numerator -= conj_times(wg[i], vb[i]);
+    outside -= std::norm(wg[i]);
   }
   const Complex eta = energy > 0 && outside > in_span * energy ? numerator / outside : Complex(0);
   std::vector<Complex> y(k);
-  for (std::size_t c = 0; c < k; ++c) y[c] = vb[c] - times(wg[c], eta);
+  for (std::size_t c = 0; c < k; ++c) y[c] = vb[static_cast<Eigen::Index>(c)] - times(wg[static_cast<Eigen::Index>(c)], eta);
   x.resize(b.rows(), 1);
   r.resize(b.rows(), 1);
   parallel_for(n, sum_block, [&](std::size_t begin, std::size_t end) {
