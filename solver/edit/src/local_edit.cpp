@@ -46,6 +46,7 @@ struct Region {
   linalg::SparseMatrix basis;  // 2·#pinned by #columns (empty: pin values, see use_basis)
   std::vector<Index> columns;  // the request's handle coordinates the basis uses
   bool use_basis = false;
+  std::uint64_t resolution = 0;  // the State::resolution C and basis were made from
   // Subproblem.
   std::vector<int> vertices;
   std::size_t inside = 0;
@@ -128,6 +129,11 @@ struct LocalEditor::State {
   std::vector<int> region, region_parts;
   std::list<Region> cache;  // std::list: solvers stay put while others come and go
   std::uint64_t clock = 0;
+  // The last request and its resolution (redrag: a drag that moves the same handles again resolves only its own
+  // handles), numbered: a region made from the same numbered resolution keeps its C and basis unchecked.
+  Request last_request;
+  ResolvedRequest last_resolved;
+  std::uint64_t resolution = 0;
   int retired_factorizations = 0, retired_analyses = 0, retired_schur_columns = 0;
   Report report;
   // Scratch over graph vertices, all −1 / 0 between calls.
@@ -208,6 +214,7 @@ struct LocalEditor::State {
     r.C = local_constraints(resolved.C, n);
     clear_local_of(r.vertices);
     local_basis(resolved, handle_rows, boundary.size(), r.basis, r.columns);
+    r.resolution = resolution;
 
     std::vector<Index> pinned_unknowns;
     pinned_unknowns.reserve(2 * r.pinned.size());
@@ -358,7 +365,9 @@ LocalEditor::LocalEditor(const CrowdMotion& crowd, const Options& options, const
     throw ConfigError("local.parts " + std::to_string(options.local.parts) + ": the clip's graph has only " +
                       std::to_string(vertices) + " vertices");
   }
-  (void)resolve(request, s.graph.clip, s.crowd_ids);  // fail early on a request that does not fit
+  s.last_resolved = resolve(request, s.graph.clip, s.crowd_ids);  // fails early on a request that does not fit
+  s.last_request = request;
+  s.resolution = 1;
   Report& r = s.report;
   r.graph_seconds = seconds_since(start);
   const auto partition_start = Clock::now();
@@ -383,7 +392,12 @@ LocalEditor::~LocalEditor() = default;
 
 const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Request& request) {
   State& s = *state_;
-  const ResolvedRequest resolved = resolve(request, s.graph.clip, s.crowd_ids);
+  if (!redrag(s.last_resolved, s.last_request, request, s.graph.clip)) {
+    s.last_resolved = resolve(request, s.graph.clip, s.crowd_ids);
+    ++s.resolution;
+  }
+  s.last_request = request;
+  const ResolvedRequest& resolved = s.last_resolved;
   Report& report = s.report;
   report.handles = resolved.handle_vertices.size();
   report.constraint_rows = static_cast<std::size_t>(resolved.C.rows());
@@ -445,7 +459,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Reques
   try {
     if (region == nullptr) {
       region = &s.build(s.region_parts, handles, handle_rows, resolved);
-    } else {
+    } else if (region->resolution != s.resolution) {
       Region& r = *region;
       s.fill_local_of(r);
       linalg::SparseMatrix C = s.local_constraints(resolved.C, static_cast<Index>(r.vertices.size()));
@@ -463,6 +477,7 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Reques
         r.columns = std::move(columns);
         s.apply_basis(r);
       }
+      r.resolution = s.resolution;  // only once both are up to date (a throw above leaves it to be done again)
     }
   } catch (...) {
     for (int v : s.region) s.inside_mark[static_cast<std::size_t>(v)] = 0;

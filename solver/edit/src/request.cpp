@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <sstream>
 
@@ -194,6 +196,51 @@ Eigen::Vector2d original(const Clip& clip, std::size_t sample, std::size_t agent
   return clip.positions.row(clip.vertex(sample, agent_index)).transpose();
 }
 
+// drags[k]'s offset, rotation and pivot are finite, or a ConfigError.
+void check_finite(const Drag& d, std::size_t k) {
+  if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) {
+    throw ConfigError("drags[" + std::to_string(k) + "]: offset, rotation and pivot must be finite");
+  }
+}
+
+// A drag's rigid motion p ↦ pivot + R(θ) (p − pivot) + offset (exactly p + offset without rotation) and its
+// coordinates (cos θ, sin θ, t), t = pivot − R(θ) pivot + offset: one definition for resolve() and redrag(), so
+// both give the same bits. `centroid` is the default pivot.
+struct DragMotion {
+  DragMotion(const Drag& d, const Eigen::Vector2d& centroid)
+      : drag(d),
+        pivot(d.pivot.value_or(centroid)),
+        turn(d.rotation),
+        t(d.rotation == 0.0 ? d.offset : Eigen::Vector2d(pivot - turn * pivot + d.offset)) {}
+
+  [[nodiscard]] std::array<double, 4> coordinates() const {
+    const bool still = drag.rotation == 0.0;
+    return {still ? 1.0 : std::cos(drag.rotation), still ? 0.0 : std::sin(drag.rotation), t.x(), t.y()};
+  }
+  [[nodiscard]] Eigen::Vector2d target(const Eigen::Vector2d& p) const {
+    return drag.rotation == 0.0 ? Eigen::Vector2d(p + drag.offset) : Eigen::Vector2d(pivot + turn * (p - pivot) + drag.offset);
+  }
+
+  const Drag& drag;
+  Eigen::Vector2d pivot;
+  Eigen::Rotation2Dd turn;
+  Eigen::Vector2d t;
+};
+
+// The same bits (a zero's sign and a NaN's payload count: redrag() promises resolve()'s bits).
+bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+bool same_bits(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()); }
+bool same_bits(const std::optional<Eigen::Vector2d>& a, const std::optional<Eigen::Vector2d>& b) {
+  return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
+}
+bool same_pins(const std::vector<Pin>& a, const std::vector<Pin>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (a[k].agent != b[k].agent || a[k].frame != b[k].frame || !same_bits(a[k].position, b[k].position)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<Eigen::Index> ResolvedRequest::pinned_unknowns() const {
@@ -306,6 +353,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     std::size_t who = 0;    // index into `sources`
     std::size_t order = 0;  // its place in request order
     Parametrisation q;
+    long drag = -1;  // k when drags[k] placed it
   };
   // Who placed a handle: pins[k] or drags[k], as text only in a message (a request that pins 20,000 vertices
   // would otherwise build 60,000 strings on every drag).
@@ -348,34 +396,27 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     coordinates.insert(coordinates.end(), {at.x(), at.y()});
     place(s, j, at, who);
   }
+  std::vector<ResolvedRequest::DragPlacement> drag_placements(request.drags.size());
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& d = request.drags[k];
     const std::string where = "drags[" + std::to_string(k) + "]";
-    if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) {
-      throw ConfigError(where + ": offset, rotation and pivot must be finite");
-    }
+    check_finite(d, k);
     const auto agents = selected_agents(clip, crowd_ids, d.selection.agents, where);
     const auto [first, last] = clamp_range(clip, d.selection.first_frame, d.selection.last_frame, where);
     const auto samples = samples_in(clip, first, last, where);
-    Eigen::Vector2d pivot = Eigen::Vector2d::Zero();
-    if (d.pivot) {
-      pivot = *d.pivot;
-    } else {
-      for (std::size_t s : samples)
-        for (std::size_t j : agents) pivot += original(clip, s, j);
-      pivot /= static_cast<double>(samples.size() * agents.size());
-    }
-    const Eigen::Rotation2Dd turn(d.rotation);
-    // R p + t, t = pivot − R pivot + offset (exactly the offset without rotation).
-    const Eigen::Vector2d t = d.rotation == 0.0 ? d.offset : Eigen::Vector2d(pivot - turn * pivot + d.offset);
+    Eigen::Vector2d& centroid = drag_placements[k].centroid;
+    for (std::size_t s : samples)
+      for (std::size_t j : agents) centroid += original(clip, s, j);
+    centroid /= static_cast<double>(samples.size() * agents.size());
+    const DragMotion motion(d, centroid);
     current = {static_cast<Index>(coordinates.size()), true, {0, 0}};
-    coordinates.insert(coordinates.end(), {d.rotation == 0.0 ? 1.0 : std::cos(d.rotation), d.rotation == 0.0 ? 0.0 : std::sin(d.rotation), t.x(), t.y()});
+    drag_placements[k].column = current.column;
+    const std::array<double, 4> c = motion.coordinates();
+    coordinates.insert(coordinates.end(), c.begin(), c.end());
     for (std::size_t s : samples) {
       for (std::size_t j : agents) {
-        // Without rotation the target is exactly original + offset (no round trip through the pivot).
-        const Eigen::Vector2d p = original(clip, s, j);
-        place(s, j, d.rotation == 0.0 ? Eigen::Vector2d(p + d.offset) : Eigen::Vector2d(pivot + turn * (p - pivot) + d.offset),
-              Source{"drags", k});
+        place(s, j, motion.target(original(clip, s, j)), Source{"drags", k});
+        placements.back().drag = static_cast<long>(k);
       }
     }
   }
@@ -393,6 +434,9 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
       continue;
     }
     const Placement& first = placements[firsts.back()];
+    for (long k : {first.drag, p.drag}) {
+      if (k >= 0) drag_placements[static_cast<std::size_t>(k)].alone = false;
+    }
     const bool differs = (first.target - p.target).cwiseAbs().maxCoeff() > 1e-9 * (1.0 + p.target.cwiseAbs().maxCoeff());
     if (differs && (clash == nullptr || p.order < clash->order)) {
       clash = &p;
@@ -418,6 +462,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
     const auto k = static_cast<Index>(out.handle_vertices.size());
     out.handle_targets.row(k) = placement.target.transpose();
     out.handle_vertices.push_back(placement.v);
+    if (placement.drag >= 0) drag_placements[static_cast<std::size_t>(placement.drag)].rows.push_back(k);
     const Parametrisation& q = placement.q;
     if (q.rigid) {  // x = p_x cos − p_y sin + t_x,  y = p_y cos + p_x sin + t_y
       basis.emplace_back(2 * k, q.column, q.p.x());
@@ -435,6 +480,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
   out.handle_basis.setFromTriplets(basis.begin(), basis.end());
   out.handle_basis.makeCompressed();
   out.handle_coordinates = Eigen::Map<const Eigen::VectorXd>(coordinates.data(), static_cast<Index>(coordinates.size()));
+  out.drags = std::move(drag_placements);
 
   // General constraints: one or two rows per sample they cover (a Row: one row).
   std::vector<Eigen::Triplet<double>> entries;
@@ -550,6 +596,43 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
   if (!entries.empty()) out.C.setFromTriplets(entries.begin(), entries.end());
   out.d = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Index>(d.size()));
   return out;
+}
+
+bool redrag(ResolvedRequest& resolved, const Request& before, const Request& request, const Clip& clip) {
+  if (request.drags.size() != before.drags.size() || resolved.drags.size() != request.drags.size() ||
+      !same_pins(request.pins, before.pins) || request.constraints != before.constraints) {
+    return false;
+  }
+  std::vector<std::size_t> changed;
+  for (std::size_t k = 0; k < request.drags.size(); ++k) {
+    const Drag& was = before.drags[k];
+    const Drag& is = request.drags[k];
+    if (!(is.selection == was.selection)) return false;
+    if (same_bits(is.offset, was.offset) && same_bits(is.rotation, was.rotation) && same_bits(is.pivot, was.pivot)) continue;
+    if (!resolved.drags[k].alone) return false;  // a target shared with another entry: resolve() checks them
+    changed.push_back(k);
+  }
+  // Every new value first (resolve()'s errors, nothing changed yet), then written.
+  std::vector<Eigen::Vector2d> targets;
+  for (std::size_t k : changed) {
+    check_finite(request.drags[k], k);
+    const DragMotion motion(request.drags[k], resolved.drags[k].centroid);
+    for (Index row : resolved.drags[k].rows) {
+      const Eigen::Vector2d p = clip.positions.row(resolved.handle_vertices[static_cast<std::size_t>(row)]).transpose();
+      targets.push_back(motion.target(p));
+      if (!targets.back().allFinite()) {
+        throw ConfigError("drags[" + std::to_string(k) + "]: target position " + point(targets.back()) + " is not finite");
+      }
+    }
+  }
+  std::size_t next = 0;
+  for (std::size_t k : changed) {
+    const DragMotion motion(request.drags[k], resolved.drags[k].centroid);
+    const std::array<double, 4> c = motion.coordinates();
+    for (Index i = 0; i < 4; ++i) resolved.handle_coordinates[resolved.drags[k].column + i] = c[static_cast<std::size_t>(i)];
+    for (Index row : resolved.drags[k].rows) resolved.handle_targets.row(row) = targets[next++].transpose();
+  }
+  return true;
 }
 
 }  // namespace throng::edit

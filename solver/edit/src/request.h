@@ -30,6 +30,16 @@ struct ResolvedRequest {
   linalg::SparseMatrix C;
   Eigen::VectorXd d;
   std::vector<std::size_t> row_source;
+  /// What redrag() needs of drags[k]: the handle rows it placed (increasing), whether it placed them alone (no
+  /// vertex of them placed twice, by it or by another entry), its first coordinate, and its default pivot (the
+  /// centroid of its selected original positions, kept whether or not the drag gives a pivot).
+  struct DragPlacement {
+    std::vector<Eigen::Index> rows;
+    bool alone = true;
+    Eigen::Index column = 0;
+    Eigen::Vector2d centroid{0, 0};
+  };
+  std::vector<DragPlacement> drags;
 
   /// The pinned unknowns: 2v, 2v + 1 for each handled vertex, in handle order.
   [[nodiscard]] std::vector<Eigen::Index> pinned_unknowns() const;
@@ -49,6 +59,15 @@ struct ResolvedRequest {
 /// required_frames checks them (agents, frames, finite numbers, a sum's weights, a row's distinct non-zero terms). Two handles placing one vertex differently are a
 /// NumericalError (contradictory).
 [[nodiscard]] ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids);
+
+/// Brings `resolved`, resolve(before, clip, …), to `request` when the two differ only in their drags' offsets,
+/// rotations and pivots (an interactive drag of the same handles) and every drag that changed placed its vertices
+/// alone: only those drags' coordinates and targets are computed again, the values resolve(request, clip, …)
+/// gives, bit for bit (handles, basis, constraints and the other drags' targets are unchanged). So a drag costs
+/// its own handles, not the request's: a request that holds every agent's first and last frame has 2 × agents
+/// handles. Returns false, `resolved` untouched, when the requests differ otherwise (resolve anew). Throws
+/// ConfigError as resolve() does for a non-finite offset, rotation or pivot, `resolved` untouched.
+[[nodiscard]] bool redrag(ResolvedRequest& resolved, const Request& before, const Request& request, const Clip& clip);
 
 /// "constraints[3] (velocity of agent 12 at frame 40)": how messages name a general constraint.
 [[nodiscard]] std::string describe(const Request& request, std::size_t constraint);

@@ -32,7 +32,9 @@
 // (Report::factorizations and regions_built do not grow). Committing changes only the boundary's values: the
 // next drag of a region whose boundary moved costs step 1 one back-substitution. Up to
 // LocalOptions::max_cached_regions regions are kept, the least recently used dropped first. A deform's other
-// costs are the request's resolution (over its handles) and the region's own size, not the crowd's.
+// costs are the region's own size and the request's resolution: a request that differs from the last one only
+// in its drags' offsets, rotations and pivots resolves only the changed drags' handles (redrag, request.h), so a
+// drag that holds every agent's first and last frame does not pay for those 2 × agents handles again.
 //
 // Decisions where the issue is open: the halo is measured in parts (not vertices) because parts are the unit
 // that is factorised and cached; a region is at least one part even when the moved handles sit on a part's
