@@ -16,14 +16,12 @@ namespace {
 // Distances below this (metres) count as "on the stroke" (l = 0 in Eq. 2).
 constexpr double on_stroke_m = 1e-12;
 
-// Eq. 2–3 for one agent: o_i ∝ 1 / l_i², or shared equally among the strokes at l = 0.
-Eigen::RowVectorXd weights_for(const Course& course, const Eigen::Vector2d& p) {
-  const auto n = static_cast<Eigen::Index>(course.auxiliary_count() + 1);
+// Eq. 2–3 for one agent: o_i ∝ 1 / l_i², or shared equally among the strokes at l = 0. strokes: the main
+// stroke, then the smoothed auxiliaries.
+Eigen::RowVectorXd weights_for(const std::vector<detail::PolylineDistance>& strokes, const Eigen::Vector2d& p) {
+  const auto n = static_cast<Eigen::Index>(strokes.size());
   Eigen::RowVectorXd l(n);
-  l(0) = detail::distance_to_polyline(course.main, p);
-  for (Eigen::Index i = 1; i < n; ++i) {
-    l(i) = detail::distance_to_polyline(course.smoothed[static_cast<std::size_t>(i - 1)], p);
-  }
+  for (Eigen::Index i = 0; i < n; ++i) l(i) = strokes[static_cast<std::size_t>(i)](p);
   const auto on = (l.array() <= on_stroke_m).count();
   if (on > 0) {
     return (l.array() <= on_stroke_m).cast<double>().matrix() / static_cast<double>(on);
@@ -50,10 +48,12 @@ AgentParameters agent_parameters(const Course& course, const std::vector<Eigen::
   a.first_target.assign(start.size(), 0);
   a.correction_draw.resize(start.size());
   a.weights.resize(static_cast<Eigen::Index>(start.size()), static_cast<Eigen::Index>(course.auxiliary_count() + 1));
+  std::vector<detail::PolylineDistance> strokes{detail::PolylineDistance(course.main)};
+  for (const auto& line : course.smoothed) strokes.emplace_back(line);
   // Each agent's row and draw depend on that agent only: any thread count gives the same values.
   parallel_for(start.size(), 64, [&](std::size_t begin, std::size_t end) {
     for (std::size_t j = begin; j < end; ++j) {
-      a.weights.row(static_cast<Eigen::Index>(j)) = weights_for(course, start[j]);
+      a.weights.row(static_cast<Eigen::Index>(j)) = weights_for(strokes, start[j]);
       Rng rng(derive_seed(options.seed, j));
       a.correction_draw[j] = rng.uniform(0.5, 1.0);
     }
