@@ -1,6 +1,7 @@
 #include "synthetic_crowd.h"
 
 #include <throng/core/errors.h>
+#include <throng/core/random.h>
 #include <throng/graph/motion_graph.h>
 #include <throng/graph/partition.h>
 
@@ -135,6 +136,34 @@ TEST_CASE("labels are renumbered by smallest vertex, and empty labels are droppe
   CHECK(parts_within(p, seed, 1) == std::vector<int>{0, 1});
   CHECK(parts_within(p, seed, 2) == std::vector<int>{0, 1, 2});
   CHECK(parts_within(p, seed, -1) == std::vector<int>{0, 1, 2});
+}
+
+TEST_CASE("a motion graph's partition data, built without its adjacency, equals the adjacency's") {
+  const MotionGraph graph = grid_graph(6, 9, 25);
+  const AdjacencyGraph g = space_time_adjacency(graph);
+  const std::size_t n = graph.vertex_count();
+  Rng rng(3);
+  std::vector<std::vector<int>> labelings;
+  labelings.push_back(partition_time_blocks(graph, 40, {}).part_of);   // blocks of samples × groups
+  labelings.push_back(partition_graph(g, {.parts = 17, .seed = 1}).part_of);  // METIS on the whole graph
+  labelings.emplace_back(n, 4);                                        // one part
+  std::vector<int> scattered(n);                                       // labels at random, some unused
+  for (int& label : scattered) label = static_cast<int>(rng.below(50)) * 2;
+  labelings.push_back(scattered);
+  for (const std::vector<int>& labels : labelings) {
+    const Partition direct = make_partition(graph, labels);
+    const Partition from_adjacency = make_partition(g, labels);
+    check_partition(g, direct);
+    CHECK(direct.part_of == from_adjacency.part_of);
+    CHECK(direct.parts == from_adjacency.parts);
+    CHECK(direct.boundary == from_adjacency.boundary);
+    CHECK(direct.adjacent == from_adjacency.adjacent);
+    CHECK(direct.edge_cut == from_adjacency.edge_cut);
+  }
+  CHECK_THROWS_AS(make_partition(graph, std::vector<int>(n - 1, 0)), std::invalid_argument);
+  std::vector<int> negative(n, 0);
+  negative[7] = -1;
+  CHECK_THROWS_AS(make_partition(graph, negative), std::invalid_argument);
 }
 
 TEST_CASE("a disconnected graph: parts_within stays in the seed's component") {

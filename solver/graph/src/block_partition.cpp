@@ -78,7 +78,7 @@ Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part,
   detail::check_imbalance(options.imbalance);
   const std::size_t samples = graph.sample_count(), n = graph.agent_count();
   std::vector<int> labels(graph.vertex_count(), 0);
-  if (samples == 0 || n == 0) return make_partition(space_time_adjacency(graph), labels);
+  if (samples == 0 || n == 0) return make_partition(graph, labels);
   // Blocks as even as whole samples allow: block k holds samples [k·S/B, (k+1)·S/B).
   const std::size_t blocks = std::max<std::size_t>(1, (samples + length / 2) / length);
   auto first_sample = [&](std::size_t k) { return k * samples / blocks; };
@@ -112,7 +112,7 @@ Partition partition_time_blocks(const MotionGraph& graph, int vertices_per_part,
       }
     }
   });
-  return make_partition(space_time_adjacency(graph), labels);
+  return make_partition(graph, labels);
 }
 
 }  // namespace throng

@@ -100,6 +100,11 @@ struct Partition {
 /// Throws std::invalid_argument for a size mismatch or a negative label.
 [[nodiscard]] Partition make_partition(const AdjacencyGraph& graph, std::span<const int> part_of);
 
+/// The same for the space-time graph of `graph` (formation edges within a sample, each agent to itself at the
+/// next sample): make_partition(space_time_adjacency(graph), part_of), without building that adjacency (at
+/// 10,000 agents × 300 samples it took 287 ms on one core of a 900 ms partition_time_blocks; bench_partition).
+[[nodiscard]] Partition make_partition(const MotionGraph& graph, std::span<const int> part_of);
+
 /// The parts within `hops` steps of `seeds` in the part adjacency (seeds included), increasing. hops < 0
 /// means every part connected to a seed.
 [[nodiscard]] std::vector<int> parts_within(const Partition& partition, std::span<const int> seeds, int hops);
