@@ -400,3 +400,25 @@ TEST_CASE("a cached region takes new constraint values and rows in place and giv
   LocalEditor fresh(crowd, local_options(12, 1), request);
   CHECK((fresh.deform(request) - got).cwiseAbs().maxCoeff() < rounding);
 }
+
+TEST_CASE("a deform that fails leaves no half-built region: the same request fails the same way, a good one works") {
+  const CrowdMotion crowd = scene();
+  // A row whose norm overflows: the region's solvers refuse it while the region is being built.
+  Request bad = corner_drag({0.5, 0});
+  Row row;
+  row.terms = {{.agent = 100, .frame = 30, .axis = 0, .coefficient = 1e200}, {.agent = 101, .frame = 30, .axis = 0, .coefficient = -1e200}};
+  bad.constraints.push_back(row);
+  LocalEditor local(crowd, local_options(12, 1), bad);
+  std::string first;
+  try {
+    (void)local.deform(bad);
+  } catch (const std::exception& e) {
+    first = e.what();
+  }
+  REQUIRE_FALSE(first.empty());
+  CHECK_THROWS_WITH(local.deform(bad), first);
+  CHECK(local.report().regions_built == 0);
+  const Request good = corner_drag({0.5, 0});
+  LocalEditor fresh(crowd, local_options(12, 1), good);
+  CHECK((local.deform(good) - fresh.deform(good)).cwiseAbs().maxCoeff() == 0.0);
+}

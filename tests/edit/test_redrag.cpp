@@ -137,6 +137,16 @@ TEST_CASE("redrag refuses requests that differ in more than their drags' motion,
   now = before;
   now.constraints.clear();
   CHECK(refused(now));
+  // Equal constraint values whose zeros differ in sign: resolve()'s d would differ in bits.
+  now = before;
+  now.constraints[0] = Velocity{.agent = 120, .frame = 8, .velocity = {0.5, 0.2}};
+  CHECK_FALSE(refused(now));  // the same bits: taken (nothing to change)
+  Request zero_velocity = before;
+  zero_velocity.constraints[0] = Velocity{.agent = 120, .frame = 8, .velocity = {0.0, 0.2}};
+  ResolvedRequest at_zero_velocity = resolve(zero_velocity, clip, crowd.ids);
+  now = zero_velocity;
+  std::get<Velocity>(now.constraints[0]).velocity.x() = -0.0;
+  CHECK_FALSE(redrag(at_zero_velocity, zero_velocity, now, clip));
   now = before;
   now.drags.pop_back();
   CHECK(refused(now));
@@ -176,9 +186,17 @@ TEST_CASE("redrag refuses a changed drag that shares a vertex with another entry
   now.drags[3].offset = {0.5, 0.5};
   REQUIRE(redrag(resolved, before, now, clip));
   check_same(resolved, resolve(now, clip, crowd.ids));
+  // A selection that names an agent twice places its vertices twice: not alone.
+  Request twice = request_of();
+  twice.drags[3].selection.agents = {141, 140, 141};
+  ResolvedRequest twice_resolved = resolve(twice, clip, crowd.ids);
+  CHECK_FALSE(twice_resolved.drags[3].alone);
+  now = twice;
+  now.drags[3].offset = {0.25, 0};
+  CHECK_FALSE(redrag(twice_resolved, twice, now, clip));
 }
 
-TEST_CASE("redrag throws resolve's errors for a motion that is not finite and leaves the resolution alone") {
+TEST_CASE("redrag leaves a motion that is not finite to resolve(), which names it, and leaves the resolution alone") {
   const CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
   const Clip clip = clip_of(crowd);
   const Request before = request_of();
@@ -187,15 +205,15 @@ TEST_CASE("redrag throws resolve's errors for a motion that is not finite and le
   Request now = before;
   now.drags[1].offset = {1, 1};  // a change that would be written, were the next one finite
   now.drags[2].offset.x() = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THROWS_WITH(redrag(resolved, before, now, clip), Contains("drags[2]: offset, rotation and pivot must be finite"));
-  CHECK_THROWS_WITH(resolve(now, clip, crowd.ids), Contains("drags[2]: offset, rotation and pivot must be finite"));
+  CHECK_FALSE(redrag(resolved, before, now, clip));
   check_same(resolved, original);
+  CHECK_THROWS_WITH(resolve(now, clip, crowd.ids), Contains("drags[2]: offset, rotation and pivot must be finite"));
   // A finite motion whose targets overflow: turned by π about a pivot at the largest double.
   now = before;
   now.drags[1].offset = {1, 1};
   now.drags[3].rotation = std::numbers::pi;
   now.drags[3].pivot = Eigen::Vector2d(DBL_MAX, 0);
-  CHECK_THROWS_WITH(redrag(resolved, before, now, clip), Contains("drags[3]: target position") && Contains("is not finite"));
-  CHECK_THROWS_WITH(resolve(now, clip, crowd.ids), Contains("drags[3]: target position") && Contains("is not finite"));
+  CHECK_FALSE(redrag(resolved, before, now, clip));
   check_same(resolved, original);
+  CHECK_THROWS_WITH(resolve(now, clip, crowd.ids), Contains("drags[3]: target position") && Contains("is not finite"));
 }

@@ -182,11 +182,35 @@ struct LocalEditor::State {
   }
 
   // Assembles and factorises the region of `parts` (vertices R, marked in inside_mark) for the handles inside
-  // it (`handles`, their indices into the request's handle_vertices in `handle_rows`).
+  // it (`handles`, their indices into the request's handle_vertices in `handle_rows`), at the cache's front. A
+  // throw anywhere leaves neither the region in the cache nor local_of marked.
   Region& build(const std::vector<int>& parts, const std::vector<Index>& handles, const std::vector<Index>& handle_rows,
                 const ResolvedRequest& resolved) {
-    const auto start = Clock::now();
     Region& r = cache.emplace_front(options.solver);
+    try {
+      assemble(r, parts, handles, handle_rows, resolved);
+    } catch (...) {
+      clear_local_of(region);
+      clear_local_of(r.vertices);
+      cache.pop_front();
+      throw;
+    }
+    // Keep the cache within its limit (the new region is at the front and stays).
+    while (cache.size() > static_cast<std::size_t>(options.local.max_cached_regions)) {
+      auto oldest = std::min_element(std::next(cache.begin()), cache.end(),
+                                     [](const Region& a, const Region& b) { return a.last_used < b.last_used; });
+      retired_factorizations += oldest->step1_solver.report().factorizations + oldest->step2_solver.report().factorizations;
+      retired_analyses += analyses_of(*oldest);
+      retired_schur_columns += oldest->step1_solver.report().schur_columns + oldest->step2_solver.report().schur_columns;
+      cache.erase(oldest);
+    }
+    return r;
+  }
+
+  // build()'s work on the new region r.
+  void assemble(Region& r, const std::vector<int>& parts, const std::vector<Index>& handles, const std::vector<Index>& handle_rows,
+                const ResolvedRequest& resolved) {
+    const auto start = Clock::now();
     r.parts = parts;
     r.handles = handles;
     r.vertices = region;
@@ -214,7 +238,6 @@ struct LocalEditor::State {
     r.C = local_constraints(resolved.C, n);
     clear_local_of(r.vertices);
     local_basis(resolved, handle_rows, boundary.size(), r.basis, r.columns);
-    r.resolution = resolution;
 
     std::vector<Index> pinned_unknowns;
     pinned_unknowns.reserve(2 * r.pinned.size());
@@ -243,18 +266,14 @@ struct LocalEditor::State {
       r.step2_solver.share_analysis(&r.step1_solver);
     }
     apply_basis(r);
-    try {
-      in_region_terms(r, [&] {
-        r.step1_solver.analyze();
-        if (options.scale_compensation) r.step2_solver.analyze();
-        r.step1_solver.precompute();
-        if (options.scale_compensation) r.step2_solver.precompute();
-        return 0;
-      }, nullptr);
-    } catch (...) {
-      cache.pop_front();
-      throw;
-    }
+    in_region_terms(r, [&] {
+      r.step1_solver.analyze();
+      if (options.scale_compensation) r.step2_solver.analyze();
+      r.step1_solver.precompute();
+      if (options.scale_compensation) r.step2_solver.precompute();
+      return 0;
+    }, nullptr);
+    r.resolution = resolution;  // made from this resolution's constraints and basis
     ++report.regions_built;
     report.precompute_seconds = seconds_since(start);
     const linalg::LeastSquaresReport& one = r.step1_solver.report();
@@ -270,16 +289,6 @@ struct LocalEditor::State {
       const double step2 = two.factorization.reciprocal_condition;
       if (step2 > 0 && (report.reciprocal_condition <= 0 || step2 < report.reciprocal_condition)) report.reciprocal_condition = step2;
     }
-    // Keep the cache within its limit (the new region is at the front and stays).
-    while (cache.size() > static_cast<std::size_t>(options.local.max_cached_regions)) {
-      auto oldest = std::min_element(std::next(cache.begin()), cache.end(),
-                                     [](const Region& a, const Region& b) { return a.last_used < b.last_used; });
-      retired_factorizations += oldest->step1_solver.report().factorizations + oldest->step2_solver.report().factorizations;
-      retired_analyses += analyses_of(*oldest);
-      retired_schur_columns += oldest->step1_solver.report().schur_columns + oldest->step2_solver.report().schur_columns;
-      cache.erase(oldest);
-    }
-    return r;
   }
 
   // The right-hand sides' boundary terms for B's current positions (recomputed only when those changed: the
@@ -392,11 +401,12 @@ LocalEditor::~LocalEditor() = default;
 
 const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Request& request) {
   State& s = *state_;
-  if (!redrag(s.last_resolved, s.last_request, request, s.graph.clip)) {
-    s.last_resolved = resolve(request, s.graph.clip, s.crowd_ids);
+  Request next = request;  // copied first: the request and its resolution change together or not at all
+  if (!redrag(s.last_resolved, s.last_request, next, s.graph.clip)) {
+    s.last_resolved = resolve(next, s.graph.clip, s.crowd_ids);
     ++s.resolution;
   }
-  s.last_request = request;
+  s.last_request = std::move(next);
   const ResolvedRequest& resolved = s.last_resolved;
   Report& report = s.report;
   report.handles = resolved.handle_vertices.size();
@@ -473,9 +483,15 @@ const Eigen::Matrix<double, Eigen::Dynamic, 2>& LocalEditor::deform(const Reques
       std::vector<Index> columns;
       local_basis(resolved, handle_rows, r.vertices.size() - r.inside, basis, columns);
       if (columns != r.columns || !same_matrix(basis, r.basis)) {
-        r.basis = std::move(basis);
-        r.columns = std::move(columns);
-        s.apply_basis(r);
+        std::swap(r.basis, basis);
+        std::swap(r.columns, columns);
+        try {
+          s.apply_basis(r);
+        } catch (...) {  // the old basis back, so that the next deform finds the change and applies it again
+          std::swap(r.basis, basis);
+          std::swap(r.columns, columns);
+          throw;
+        }
       }
       r.resolution = s.resolution;  // only once both are up to date (a throw above leaves it to be done again)
     }

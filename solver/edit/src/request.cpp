@@ -233,12 +233,41 @@ bool same_bits(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return same
 bool same_bits(const std::optional<Eigen::Vector2d>& a, const std::optional<Eigen::Vector2d>& b) {
   return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
 }
-bool same_pins(const std::vector<Pin>& a, const std::vector<Pin>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    if (a[k].agent != b[k].agent || a[k].frame != b[k].frame || !same_bits(a[k].position, b[k].position)) return false;
-  }
-  return true;
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](double x, double y) { return same_bits(x, y); });
+}
+bool same_bits(const Pin& a, const Pin& b) { return a.agent == b.agent && a.frame == b.frame && same_bits(a.position, b.position); }
+bool same_bits(const RelativePosition& a, const RelativePosition& b) {
+  return a.agent == b.agent && a.other == b.other && a.first_frame == b.first_frame && a.last_frame == b.last_frame &&
+         same_bits(a.offset, b.offset);
+}
+bool same_bits(const Velocity& a, const Velocity& b) { return a.agent == b.agent && a.frame == b.frame && same_bits(a.velocity, b.velocity); }
+bool same_bits(const OnLine& a, const OnLine& b) {
+  return a.agent == b.agent && a.first_frame == b.first_frame && a.last_frame == b.last_frame && same_bits(a.point, b.point) &&
+         same_bits(a.direction, b.direction);
+}
+bool same_bits(const Acceleration& a, const Acceleration& b) {
+  return a.agent == b.agent && a.frame == b.frame && same_bits(a.acceleration, b.acceleration);
+}
+bool same_bits(const Sum& a, const Sum& b) {
+  return a.agents == b.agents && same_bits(a.weights, b.weights) && a.first_frame == b.first_frame && a.last_frame == b.last_frame &&
+         same_bits(a.value, b.value);
+}
+bool same_bits(const RowTerm& a, const RowTerm& b) {
+  return a.agent == b.agent && a.frame == b.frame && a.axis == b.axis && same_bits(a.coefficient, b.coefficient);
+}
+bool same_bits(const Row& a, const Row& b) {
+  return a.terms.size() == b.terms.size() && same_bits(a.value, b.value) &&
+         std::equal(a.terms.begin(), a.terms.end(), b.terms.begin(), [](const RowTerm& x, const RowTerm& y) { return same_bits(x, y); });
+}
+bool same_bits(const Constraint& a, const Constraint& b) {
+  return a.index() == b.index() &&
+         std::visit([&](const auto& x) { return same_bits(x, std::get<std::decay_t<decltype(x)>>(b)); }, a);
+}
+// Every entry the same, value for value and bit for bit.
+template <typename T>
+bool same_entries(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const T& x, const T& y) { return same_bits(x, y); });
 }
 
 }  // namespace
@@ -600,29 +629,32 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
 
 bool redrag(ResolvedRequest& resolved, const Request& before, const Request& request, const Clip& clip) {
   if (request.drags.size() != before.drags.size() || resolved.drags.size() != request.drags.size() ||
-      !same_pins(request.pins, before.pins) || request.constraints != before.constraints) {
+      !same_entries(request.pins, before.pins) || !same_entries(request.constraints, before.constraints)) {
     return false;
   }
   std::vector<std::size_t> changed;
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& was = before.drags[k];
     const Drag& is = request.drags[k];
-    if (!(is.selection == was.selection)) return false;
+    if (is.selection.agents != was.selection.agents || is.selection.first_frame != was.selection.first_frame ||
+        is.selection.last_frame != was.selection.last_frame) {
+      return false;
+    }
     if (same_bits(is.offset, was.offset) && same_bits(is.rotation, was.rotation) && same_bits(is.pivot, was.pivot)) continue;
     if (!resolved.drags[k].alone) return false;  // a target shared with another entry: resolve() checks them
     changed.push_back(k);
   }
-  // Every new value first (resolve()'s errors, nothing changed yet), then written.
+  // Every new value first, then written. Anything not finite is resolve()'s to report (it names the first
+  // offending entry in request order): refused, nothing changed.
   std::vector<Eigen::Vector2d> targets;
   for (std::size_t k : changed) {
-    check_finite(request.drags[k], k);
-    const DragMotion motion(request.drags[k], resolved.drags[k].centroid);
+    const Drag& d = request.drags[k];
+    if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) return false;
+    const DragMotion motion(d, resolved.drags[k].centroid);
     for (Index row : resolved.drags[k].rows) {
       const Eigen::Vector2d p = clip.positions.row(resolved.handle_vertices[static_cast<std::size_t>(row)]).transpose();
       targets.push_back(motion.target(p));
-      if (!targets.back().allFinite()) {
-        throw ConfigError("drags[" + std::to_string(k) + "]: target position " + point(targets.back()) + " is not finite");
-      }
+      if (!targets.back().allFinite()) return false;
     }
   }
   std::size_t next = 0;

@@ -61,12 +61,13 @@ struct ResolvedRequest {
 [[nodiscard]] ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vector<std::int64_t>& crowd_ids);
 
 /// Brings `resolved`, resolve(before, clip, …), to `request` when the two differ only in their drags' offsets,
-/// rotations and pivots (an interactive drag of the same handles) and every drag that changed placed its vertices
-/// alone: only those drags' coordinates and targets are computed again, the values resolve(request, clip, …)
-/// gives, bit for bit (handles, basis, constraints and the other drags' targets are unchanged). So a drag costs
-/// its own handles, not the request's: a request that holds every agent's first and last frame has 2 × agents
-/// handles. Returns false, `resolved` untouched, when the requests differ otherwise (resolve anew). Throws
-/// ConfigError as resolve() does for a non-finite offset, rotation or pivot, `resolved` untouched.
+/// rotations and pivots (an interactive drag of the same handles; every other value the same bit for bit) and
+/// every drag that changed placed its vertices alone: only those drags' coordinates and targets are computed
+/// again, the values resolve(request, clip, …) gives, bit for bit (handles, basis, constraints and the other
+/// drags' targets are unchanged). So a drag costs its own handles, not the request's: a request that holds every
+/// agent's first and last frame has 2 × agents handles. Returns false, `resolved` untouched, when the requests
+/// differ otherwise or a changed drag's motion or target is not finite: resolve anew (it says what is wrong).
+/// Never throws but for memory.
 [[nodiscard]] bool redrag(ResolvedRequest& resolved, const Request& before, const Request& request, const Clip& clip);
 
 /// "constraints[3] (velocity of agent 12 at frame 40)": how messages name a general constraint.

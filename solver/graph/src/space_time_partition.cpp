@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +15,9 @@ namespace throng {
 
 Partition make_partition(const MotionGraph& graph, std::span<const int> part_of) {
   const std::size_t n = graph.agent_count(), samples = graph.sample_count(), vertices = graph.vertex_count();
+  if (vertices >= static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw std::invalid_argument("make_partition: " + std::to_string(vertices) + " vertices exceed int indices");
+  }
   if (part_of.size() != vertices) {
     throw std::invalid_argument("make_partition: " + std::to_string(part_of.size()) + " labels for " +
                                 std::to_string(vertices) + " vertices");
@@ -49,6 +54,7 @@ Partition make_partition(const MotionGraph& graph, std::span<const int> part_of)
       const auto& edges = graph.edges[i];
       for (std::size_t k = 0; k < edges.size(); ++k) {
         const auto [a, b] = edges[k];
+        assert(0 <= a && a < b && static_cast<std::size_t>(b) < n && (k == 0 || edges[k - 1] <= edges[k]));
         if (a == b || (k > 0 && edges[k - 1][0] == a && edges[k - 1][1] == b)) continue;
         const std::size_t u = base + static_cast<std::size_t>(a), w = base + static_cast<std::size_t>(b);
         if (label[u] == label[w]) continue;

@@ -36,8 +36,8 @@ struct ArcPosition {
 /// distance_to_polyline for many points against one polyline (a stroke against every agent: 10,000 agents × 900
 /// segments was 14 % of a 10,000-agent `throng sketch`), the same value bit for bit. The segments are kept in
 /// runs of `run`, each with its bounding box; a query evaluates the run whose box is nearest first, then only
-/// the runs whose box lies within the best distance so far plus a margin far above rounding (1e-9 of the
-/// coordinates' size). The minimum over the evaluated segments is the minimum over all: a skipped segment's
+/// the runs whose box lies within the best distance so far plus a margin far above rounding (1e-9 × (1 m + the
+/// largest coordinate of the polyline and the query)). The minimum over the evaluated segments is the minimum over all: a skipped segment's
 /// computed distance, rounding included, is above the best. Keeps a copy of the points (at least one).
 class PolylineDistance {
  public:

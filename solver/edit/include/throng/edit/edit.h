@@ -96,7 +96,6 @@ struct Selection {
   std::vector<std::int64_t> agents;  ///< agent ids; empty = every agent of the clip
   Frame first_frame = 0;             ///< inclusive (clamped to the clip's first frame)
   Frame last_frame = -1;             ///< inclusive (default: the clip's last frame)
-  friend bool operator==(const Selection&, const Selection&) = default;
 };
 
 /// Keeps one agent at one frame at `position` (metres; default: where it is in the input).
@@ -104,7 +103,6 @@ struct Pin {
   std::int64_t agent = 0;
   Frame frame = 0;
   std::optional<Eigen::Vector2d> position;
-  friend bool operator==(const Pin&, const Pin&) = default;
 };
 
 /// Moves the selected vertices rigidly: p ↦ pivot + R(rotation) (p − pivot) + offset.
@@ -122,7 +120,6 @@ struct RelativePosition {
   Frame first_frame = 0;
   Frame last_frame = -1;
   std::optional<Eigen::Vector2d> offset;
-  friend bool operator==(const RelativePosition&, const RelativePosition&) = default;
 };
 
 /// The agent's velocity at `frame` (m/s), measured as (p(frame + 1) − p(frame)) / Δt.
@@ -130,7 +127,6 @@ struct Velocity {
   std::int64_t agent = 0;
   Frame frame = 0;
   Eigen::Vector2d velocity{0, 0};
-  friend bool operator==(const Velocity&, const Velocity&) = default;
 };
 
 /// The agent stays on the line through `point` along `direction` at every sample of the frame range.
@@ -140,7 +136,6 @@ struct OnLine {
   Frame last_frame = -1;
   Eigen::Vector2d point{0, 0};
   Eigen::Vector2d direction{1, 0};  ///< any non-zero length
-  friend bool operator==(const OnLine&, const OnLine&) = default;
 };
 
 /// The agent's acceleration at `frame` (m/s²): the second derivative of the parabola through its positions at
@@ -155,7 +150,6 @@ struct Acceleration {
   std::int64_t agent = 0;
   Frame frame = 0;
   Eigen::Vector2d acceleration{0, 0};
-  friend bool operator==(const Acceleration&, const Acceleration&) = default;
 };
 
 /// Σ_k weights[k] · p(agents[k]) = value at every frame of the range: with the default weights 1/n, the agents'
@@ -167,7 +161,6 @@ struct Sum {
   Frame first_frame = 0;
   Frame last_frame = -1;
   std::optional<Eigen::Vector2d> value;     ///< metres (for weights summing to 1); default: the original's sum
-  friend bool operator==(const Sum&, const Sum&) = default;
 };
 
 /// One term of a Row: coefficient · (the x or y coordinate of `agent` at `frame`).
@@ -176,7 +169,6 @@ struct RowTerm {
   Frame frame = 0;
   int axis = 0;  ///< 0: x, 1: y
   double coefficient = 1.0;
-  friend bool operator==(const RowTerm&, const RowTerm&) = default;
 };
 
 /// A user's own linear constraint, one scalar row: Σ_j terms[j].coefficient · p(agent_j, frame_j)[axis_j] = value.
@@ -185,7 +177,6 @@ struct RowTerm {
 struct Row {
   std::vector<RowTerm> terms;
   double value = 0.0;
-  friend bool operator==(const Row&, const Row&) = default;
 };
 
 using Constraint = std::variant<RelativePosition, Velocity, OnLine, Acceleration, Sum, Row>;

@@ -34,7 +34,8 @@
 // LocalOptions::max_cached_regions regions are kept, the least recently used dropped first. A deform's other
 // costs are the region's own size and the request's resolution: a request that differs from the last one only
 // in its drags' offsets, rotations and pivots resolves only the changed drags' handles (redrag, request.h), so a
-// drag that holds every agent's first and last frame does not pay for those 2 × agents handles again.
+// drag whose request holds every agent's first and last frame no longer rebuilds those 2 × agents handles' rows,
+// basis and targets (it still passes over them twice, to find the moved ones and those inside the region).
 //
 // Decisions where the issue is open: the halo is measured in parts (not vertices) because parts are the unit
 // that is factorised and cached; a region is at least one part even when the moved handles sit on a part's

@@ -103,6 +103,8 @@ struct Partition {
 /// The same for the space-time graph of `graph` (formation edges within a sample, each agent to itself at the
 /// next sample): make_partition(space_time_adjacency(graph), part_of), without building that adjacency (at
 /// 10,000 agents × 300 samples it took 287 ms on one core of a 900 ms partition_time_blocks; bench_partition).
+/// `graph.edges` as build_motion_graph makes them: each sample's pairs a < b of the clip's agents, sorted
+/// (checked by assertions in debug builds). Also throws std::invalid_argument for INT_MAX or more vertices.
 [[nodiscard]] Partition make_partition(const MotionGraph& graph, std::span<const int> part_of);
 
 /// The parts within `hops` steps of `seeds` in the part adjacency (seeds included), increasing. hops < 0
