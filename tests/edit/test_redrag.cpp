@@ -19,8 +19,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// 48 agents (ids 100..147) marching for 31 frames, every frame a sample.
-Clip clip_of(const CrowdMotion& crowd) { return make_clip(crowd, ClipOptions{}); }
 
 Drag drag_of(Frame first, Frame last, std::vector<std::int64_t> agents = {}) {
   Drag d;
@@ -40,6 +38,16 @@ Request request_of() {
   r.constraints.push_back(Velocity{.agent = 120, .frame = 8, .velocity = {0.5, 0.2}});
   return r;
 }
+
+// 48 agents (ids 100..147) marching for 31 frames, every frame a sample, and a request with its resolution.
+struct Setup {
+  explicit Setup(Request request = request_of())
+      : before(std::move(request)), original(resolve(before, clip, crowd.ids)) {}
+  CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
+  Clip clip = make_clip(crowd, ClipOptions{});
+  Request before;
+  ResolvedRequest original;
+};
 
 template <typename T>
 bool same_bytes(const T* a, const T* b, std::size_t n) { return n == 0 || std::memcmp(a, b, n * sizeof(T)) == 0; }
@@ -77,10 +85,10 @@ void check_same(const ResolvedRequest& got, const ResolvedRequest& want) {
 }  // namespace
 
 TEST_CASE("redrag gives resolve's bits for new offsets, rotations and pivots of the same drags") {
-  const CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
-  const Clip clip = clip_of(crowd);
-  Request before = request_of();
-  ResolvedRequest resolved = resolve(before, clip, crowd.ids);
+  const Setup setup;
+  const auto& [crowd, clip, first, original] = setup;
+  Request before = first;
+  ResolvedRequest resolved = original;
   REQUIRE(resolved.drags.size() == 4);
   // The first and last frames of all 48 agents, 5 × 4 and 3 × 2 group handles: each placed by its drag alone.
   CHECK(resolved.drags[0].rows.size() == 48);
@@ -109,10 +117,8 @@ TEST_CASE("redrag gives resolve's bits for new offsets, rotations and pivots of 
 }
 
 TEST_CASE("redrag refuses requests that differ in more than their drags' motion, and leaves the resolution alone") {
-  const CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
-  const Clip clip = clip_of(crowd);
-  const Request before = request_of();
-  const ResolvedRequest original = resolve(before, clip, crowd.ids);
+  const Setup setup;
+  const auto& [crowd, clip, before, original] = setup;
   ResolvedRequest resolved = original;
   auto refused = [&](const Request& now) {
     const bool done = redrag(resolved, before, now, clip);
@@ -166,13 +172,12 @@ TEST_CASE("redrag refuses requests that differ in more than their drags' motion,
 }
 
 TEST_CASE("redrag refuses a changed drag that shares a vertex with another entry: resolve() must check them") {
-  const CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
-  const Clip clip = clip_of(crowd);
-  Request before = request_of();
-  before.pins.push_back({.agent = 101, .frame = 15, .position = std::nullopt});  // inside drags[2]'s group
-  before.drags[2].offset = {0, 0};
-  before.drags[2].rotation = 0;  // so the pin and the drag agree
-  const ResolvedRequest original = resolve(before, clip, crowd.ids);
+  Request overlapping = request_of();
+  overlapping.pins.push_back({.agent = 101, .frame = 15, .position = std::nullopt});  // inside drags[2]'s group
+  overlapping.drags[2].offset = {0, 0};
+  overlapping.drags[2].rotation = 0;  // so the pin and the drag agree
+  const Setup setup(overlapping);
+  const auto& [crowd, clip, before, original] = setup;
   CHECK_FALSE(original.drags[2].alone);
   CHECK(original.drags[3].alone);
   ResolvedRequest resolved = original;
@@ -197,10 +202,8 @@ TEST_CASE("redrag refuses a changed drag that shares a vertex with another entry
 }
 
 TEST_CASE("redrag leaves a motion that is not finite to resolve(), which names it, and leaves the resolution alone") {
-  const CrowdMotion crowd = test::marching_grid(6, 8, 31, 1.0, 1.2, 0.1, 0.3, 0.2);
-  const Clip clip = clip_of(crowd);
-  const Request before = request_of();
-  const ResolvedRequest original = resolve(before, clip, crowd.ids);
+  const Setup setup;
+  const auto& [crowd, clip, before, original] = setup;
   ResolvedRequest resolved = original;
   Request now = before;
   now.drags[1].offset = {1, 1};  // a change that would be written, were the next one finite

@@ -196,12 +196,8 @@ Eigen::Vector2d original(const Clip& clip, std::size_t sample, std::size_t agent
   return clip.positions.row(clip.vertex(sample, agent_index)).transpose();
 }
 
-// drags[k]'s offset, rotation and pivot are finite, or a ConfigError.
-void check_finite(const Drag& d, std::size_t k) {
-  if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) {
-    throw ConfigError("drags[" + std::to_string(k) + "]: offset, rotation and pivot must be finite");
-  }
-}
+// Whether a drag's offset, rotation and pivot are finite.
+bool finite_motion(const Drag& d) { return d.offset.allFinite() && std::isfinite(d.rotation) && (!d.pivot || d.pivot->allFinite()); }
 
 // A drag's rigid motion p ↦ pivot + R(θ) (p − pivot) + offset (exactly p + offset without rotation) and its
 // coordinates (cos θ, sin θ, t), t = pivot − R(θ) pivot + offset: one definition for resolve() and redrag(), so
@@ -429,7 +425,7 @@ ResolvedRequest resolve(const Request& request, const Clip& clip, const std::vec
   for (std::size_t k = 0; k < request.drags.size(); ++k) {
     const Drag& d = request.drags[k];
     const std::string where = "drags[" + std::to_string(k) + "]";
-    check_finite(d, k);
+    if (!finite_motion(d)) throw ConfigError(where + ": offset, rotation and pivot must be finite");
     const auto agents = selected_agents(clip, crowd_ids, d.selection.agents, where);
     const auto [first, last] = clamp_range(clip, d.selection.first_frame, d.selection.last_frame, where);
     const auto samples = samples_in(clip, first, last, where);
@@ -647,10 +643,12 @@ bool redrag(ResolvedRequest& resolved, const Request& before, const Request& req
   // Every new value first, then written. Anything not finite is resolve()'s to report (it names the first
   // offending entry in request order): refused, nothing changed.
   std::vector<Eigen::Vector2d> targets;
+  std::vector<std::array<double, 4>> coordinates;
   for (std::size_t k : changed) {
     const Drag& d = request.drags[k];
-    if (!d.offset.allFinite() || !std::isfinite(d.rotation) || (d.pivot && !d.pivot->allFinite())) return false;
+    if (!finite_motion(d)) return false;
     const DragMotion motion(d, resolved.drags[k].centroid);
+    coordinates.push_back(motion.coordinates());
     for (Index row : resolved.drags[k].rows) {
       const Eigen::Vector2d p = clip.positions.row(resolved.handle_vertices[static_cast<std::size_t>(row)]).transpose();
       targets.push_back(motion.target(p));
@@ -658,11 +656,10 @@ bool redrag(ResolvedRequest& resolved, const Request& before, const Request& req
     }
   }
   std::size_t next = 0;
-  for (std::size_t k : changed) {
-    const DragMotion motion(request.drags[k], resolved.drags[k].centroid);
-    const std::array<double, 4> c = motion.coordinates();
-    for (Index i = 0; i < 4; ++i) resolved.handle_coordinates[resolved.drags[k].column + i] = c[static_cast<std::size_t>(i)];
-    for (Index row : resolved.drags[k].rows) resolved.handle_targets.row(row) = targets[next++].transpose();
+  for (std::size_t c = 0; c < changed.size(); ++c) {
+    const auto& placement = resolved.drags[changed[c]];
+    for (Index i = 0; i < 4; ++i) resolved.handle_coordinates[placement.column + i] = coordinates[c][static_cast<std::size_t>(i)];
+    for (Index row : placement.rows) resolved.handle_targets.row(row) = targets[next++].transpose();
   }
   return true;
 }

@@ -2,6 +2,7 @@
 #include <throng/graph/partition.h>
 
 #include "metis_parts.h"
+#include "numbered_parts.h"
 
 #include <metis.h>
 
@@ -80,28 +81,7 @@ AdjacencyGraph space_time_adjacency(const MotionGraph& graph) {
 
 Partition make_partition(const AdjacencyGraph& graph, std::span<const int> part_of) {
   const std::size_t vertices = graph.vertex_count();
-  if (part_of.size() != vertices) {
-    throw std::invalid_argument("make_partition: " + std::to_string(part_of.size()) + " labels for " +
-                                std::to_string(vertices) + " vertices");
-  }
-  // Renumber labels in order of their smallest vertex (a scan in vertex order meets them in that order).
-  int max_label = -1;
-  for (int label : part_of) {
-    if (label < 0) throw std::invalid_argument("make_partition: negative part label " + std::to_string(label));
-    max_label = std::max(max_label, label);
-  }
-  std::vector<int> renumber(static_cast<std::size_t>(max_label + 1), -1);
-  Partition p;
-  p.part_of.resize(vertices);
-  for (std::size_t v = 0; v < vertices; ++v) {
-    int& part = renumber[static_cast<std::size_t>(part_of[v])];
-    if (part < 0) {
-      part = static_cast<int>(p.parts.size());
-      p.parts.emplace_back();
-    }
-    p.part_of[v] = part;
-    p.parts[static_cast<std::size_t>(part)].push_back(static_cast<int>(v));
-  }
+  Partition p = detail::numbered_parts(vertices, part_of);
   const std::size_t count = p.parts.size();
   p.boundary.resize(count);
   p.adjacent.resize(count);
@@ -138,6 +118,32 @@ Partition partition_graph(const AdjacencyGraph& graph, const PartitionOptions& o
 }
 
 namespace detail {
+
+Partition numbered_parts(std::size_t vertices, std::span<const int> part_of) {
+  if (part_of.size() != vertices) {
+    throw std::invalid_argument("make_partition: " + std::to_string(part_of.size()) + " labels for " +
+                                std::to_string(vertices) + " vertices");
+  }
+  // Renumber labels in order of their smallest vertex (a scan in vertex order meets them in that order).
+  int max_label = -1;
+  for (int label : part_of) {
+    if (label < 0) throw std::invalid_argument("make_partition: negative part label " + std::to_string(label));
+    max_label = std::max(max_label, label);
+  }
+  std::vector<int> renumber(static_cast<std::size_t>(max_label + 1), -1);
+  Partition p;
+  p.part_of.resize(vertices);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    int& part = renumber[static_cast<std::size_t>(part_of[v])];
+    if (part < 0) {
+      part = static_cast<int>(p.parts.size());
+      p.parts.emplace_back();
+    }
+    p.part_of[v] = part;
+    p.parts[static_cast<std::size_t>(part)].push_back(static_cast<int>(v));
+  }
+  return p;
+}
 
 void check_imbalance(double imbalance) {
   if (!(imbalance > 1.0 && imbalance <= 10.0)) {

@@ -3,6 +3,8 @@
 #include <throng/core/parallel.h>
 #include <throng/graph/partition.h>
 
+#include "numbered_parts.h"
+
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -18,28 +20,7 @@ Partition make_partition(const MotionGraph& graph, std::span<const int> part_of)
   if (vertices >= static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw std::invalid_argument("make_partition: " + std::to_string(vertices) + " vertices exceed int indices");
   }
-  if (part_of.size() != vertices) {
-    throw std::invalid_argument("make_partition: " + std::to_string(part_of.size()) + " labels for " +
-                                std::to_string(vertices) + " vertices");
-  }
-  // Parts numbered in order of their smallest vertex, as the adjacency version does.
-  int max_label = -1;
-  for (int label : part_of) {
-    if (label < 0) throw std::invalid_argument("make_partition: negative part label " + std::to_string(label));
-    max_label = std::max(max_label, label);
-  }
-  std::vector<int> renumber(static_cast<std::size_t>(max_label + 1), -1);
-  Partition p;
-  p.part_of.resize(vertices);
-  for (std::size_t v = 0; v < vertices; ++v) {
-    int& part = renumber[static_cast<std::size_t>(part_of[v])];
-    if (part < 0) {
-      part = static_cast<int>(p.parts.size());
-      p.parts.emplace_back();
-    }
-    p.part_of[v] = part;
-    p.parts[static_cast<std::size_t>(part)].push_back(static_cast<int>(v));
-  }
+  Partition p = detail::numbered_parts(vertices, part_of);
   // Per sample, side by side (each writes its own vertices' flags and its own list): the cut formation edges
   // (each pair once: a sample's edges are sorted, so a repeated pair is next to itself), the vertices on a part's
   // boundary (a cut formation edge, or the same agent in another part one sample before or after), and the
