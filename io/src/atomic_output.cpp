@@ -165,6 +165,7 @@ AtomicOutput::AtomicOutput(std::filesystem::path target) : target_(std::move(tar
 }
 
 AtomicOutput::~AtomicOutput() {
+  if (flushing_.valid()) flushing_.wait();  // it flushes fd_
   if (fd_ >= 0) ::close(fd_);
   if (!committed_) ::unlinkat(folder_fd_, temporary_.filename().c_str(), 0);
   release(slot_);
@@ -190,11 +191,22 @@ void AtomicOutput::write(std::string_view bytes) {
   }
 }
 
+void AtomicOutput::flush_in_background() {
+  if (flushing_.valid()) {
+    if (flushing_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    flush_error_ = flushing_.get();
+  }
+  // After a failure none starts again: commit() reports it.
+  if (flush_error_ == 0) flushing_ = std::async(std::launch::async, [fd = fd_] { return ::fdatasync(fd) == 0 ? 0 : errno; });
+}
+
 void AtomicOutput::commit() {
   const auto fail = [&](const std::string& step, int error) {
     ::unlinkat(folder_fd_, temporary_.filename().c_str(), 0);
     throw IoError(target_.string() + ": " + step + " (" + reason(error) + ")");
   };
+  if (flushing_.valid()) flush_error_ = flushing_.get();
+  if (flush_error_ != 0) fail("cannot flush the file to disk", flush_error_);
   if (::fsync(fd_) != 0) fail("cannot flush the finished file to disk", errno);
   const int closed = ::close(fd_);
   fd_ = -1;

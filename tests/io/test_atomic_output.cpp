@@ -137,6 +137,33 @@ TEST_CASE("a write that fails (a full disk, a file size limit) is an IoError and
   CHECK(others(dir, "out.bin").empty());
 }
 
+TEST_CASE("background flushes between writes keep the bytes as written, and an abandoned output still leaves nothing") {
+  const auto dir = test::scratch_dir("io_atomic_background_flush");
+  std::string expected;
+  {
+    AtomicOutput o(dir / "out.bin");
+    for (int k = 0; k < 8; ++k) {
+      const std::string block(std::size_t{1} << 20, static_cast<char>('a' + k));
+      o.write(block);
+      expected += block;
+      o.flush_in_background();
+      o.flush_in_background();  // while the first may still run: nothing more starts, nothing is lost
+    }
+    o.write("tail");  // after the last flush: commit's own flush takes it
+    expected += "tail";
+    o.commit();
+  }
+  CHECK(content(dir / "out.bin") == expected);
+  CHECK(others(dir, "out.bin").empty());
+  {
+    AtomicOutput o(dir / "out.bin");
+    o.write(std::string(std::size_t{4} << 20, 'z'));
+    o.flush_in_background();
+  }  // destroyed without commit, its flush perhaps still running: the temporary goes, the target stays
+  CHECK(content(dir / "out.bin") == expected);
+  CHECK(others(dir, "out.bin").empty());
+}
+
 TEST_CASE("every termination signal removes the pending temporary file, and an ignored one stays ignored") {
   const auto dir = test::scratch_dir("io_atomic_signals");
   const auto run = [&](int signal, bool ignore_hup_first) {

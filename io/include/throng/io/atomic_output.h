@@ -14,6 +14,7 @@
 #pragma once
 
 #include <filesystem>
+#include <future>
 #include <string>
 #include <string_view>
 
@@ -46,8 +47,16 @@ class AtomicOutput {
   /// Appends `bytes` to the temporary file. IoError naming the target on failure (a full disk included).
   void write(std::string_view bytes);
 
+  /// Starts flushing what the temporary holds so far to disk (fdatasync) on a thread of its own and returns at
+  /// once; does nothing while an earlier one still runs. A writer that makes its file over a long run calls it
+  /// after each large write, so the disk works while the program computes and commit() waits only for the rest
+  /// (`throng sketch` with `--compression none` at 10,000 agents: 98 → 84 ms, bench_sketch_command; the flush,
+  /// 21 ms of the 98, is mostly the disk's, not the CPU's). commit() and the destructor wait for it.
+  void flush_in_background();
+
   /// Flushes the temporary file to disk, renames it onto the target and flushes the folder. Throws IoError if any
-  /// step fails (the temporary is then removed and the target left as it was).
+  /// step fails (the temporary is then removed and the target left as it was), a background flush included:
+  /// Linux reports a failed writeback to one flush of a descriptor only, so commit's own might not see it.
   void commit();
 
  private:
@@ -57,6 +66,8 @@ class AtomicOutput {
   int fd_ = -1;
   int slot_ = -1;
   bool committed_ = false;
+  std::future<int> flushing_;  // the background flush: 0, or the errno it failed with
+  int flush_error_ = 0;        // the errno of a background flush that failed
 };
 
 /// Flushes the regular file `path` to disk (fsync): what a resume record names is on disk before the record.
