@@ -170,8 +170,40 @@ TEST_CASE("repeated drags of one editor equal a fresh editor's solve, within twi
   // Each is within the tolerance of the exact solution, so within twice of each other.
   CHECK(max_distance(last, once) <= 2 * options.solver.position_tolerance);
   CHECK(max_distance(last, direct_solution(crowd, options, final_request)) <= options.solver.position_tolerance);
-  // Later drags start from the earlier ones' span: fewer iterations than the first.
-  CHECK(editor.report().iterations < fresh.report().iterations);
+  // Every drag starts from a span (the precompute's probes, then the drags before it): a few iterations at most.
+  CAPTURE(editor.report().iterations, fresh.report().iterations);
+  CHECK(editor.report().iterations <= 5);
+  CHECK(fresh.report().iterations <= 5);
+}
+
+TEST_CASE("the precompute probes the moved drag, so the first drags of a gesture start as close as later ones") {
+  // Without the probes the first drag after the precompute started from step 1's result alone and took the most
+  // iterations of the gesture (here, to 0.1 mm: 14, 9 and 5 for the three drags below and 8 for the still request;
+  // 116 and 24 for the first two at 10,000 agents, bench_edit), the second the next most. With them: 4, 3, 1 and 4.
+  const CrowdMotion crowd = scene();
+  const Options options = with_method("iterative");
+  Editor editor(crowd, options, head_and_tail({3.0, 4.0}));
+  editor.precompute();
+  for (int k = 0; k < 3; ++k) {
+    const Request request = head_and_tail({3.0 + 0.4 * k, 4.0 - 0.3 * k});
+    const Positions x = editor.deform(request);
+    CAPTURE(k, editor.report().iterations);
+    CHECK(editor.report().iterations <= 5);
+    CHECK(max_distance(x, direct_solution(crowd, options, request)) <= options.solver.position_tolerance);
+  }
+  // A request that moves no drag yet (a selection just made): the last drag is probed, and dragging it is as quick.
+  Request still = head_and_tail({0.0, 0.0});
+  still.drags[1].rotation = 0.0;
+  still.drags[2].offset = {0.0, 0.0};
+  std::swap(still.drags[1], still.drags[2]);  // the tail last
+  Editor fresh(crowd, options, still);
+  fresh.precompute();
+  Request dragged = still;
+  dragged.drags[2].offset = {0.6, -0.4};
+  const Positions x = fresh.deform(dragged);
+  CAPTURE(fresh.report().iterations);
+  CHECK(fresh.report().iterations <= 5);
+  CHECK(max_distance(x, direct_solution(crowd, options, dragged)) <= options.solver.position_tolerance);
 }
 
 TEST_CASE("the iterative method gives the same bits for any thread count") {

@@ -237,6 +237,7 @@ void IterativeSteps::precompute(const ResolvedRequest& current) {
   const auto columns_start = Clock::now();
   precompute_iterations_ = 0;
   const auto nf = static_cast<Index>(split_.free.size());
+  const bool probe_now = basis_stale_;  // the history was cleared with the basis: seed it again
   if (basis_stale_) {
     // The handles' complex basis and the coordinates of their input places (B u⁰ = x⁰_P).
     use_basis_ = false;
@@ -304,8 +305,44 @@ void IterativeSteps::precompute(const ResolvedRequest& current) {
     }
     constraints_stale_ = false;
   }
+  if (probe_now && step2_ && use_basis_ && nf > 0) probe_drags(current);
   columns_seconds_ = seconds_since(columns_start);
   precompute_seconds_ = seconds_since(start);
+}
+
+void IterativeSteps::probe_drags(const ResolvedRequest& current) {
+  // Which drag: the first one the request moves, else the last one (a selection just made, about to be dragged).
+  // It must place its handles alone, so that moving its coordinates moves exactly its rows.
+  const ResolvedRequest::DragPlacement* chosen = nullptr;
+  for (const ResolvedRequest::DragPlacement& drag : current.drags) {
+    if (!drag.alone || drag.rows.empty()) continue;
+    // Its coordinates (cos θ, sin θ, t_x, t_y) are (1, 0, 0, 0) when it holds its selection in place (request.cpp).
+    const Eigen::Vector4d motion = current.handle_coordinates.segment<4>(drag.column);
+    const bool moved = motion != Eigen::Vector4d(1, 0, 0, 0);
+    if (moved) {
+      chosen = &drag;
+      break;
+    }
+    chosen = &drag;
+  }
+  if (chosen == nullptr) return;
+  // It moved by probe_offset_m along +x, +y, −x and −y from where the request has it, each solved as a drag is;
+  // the step-2 solutions stay in the history (four around the drag span its own solution too, to second order).
+  Report report;
+  Positions x1, x2;
+  for (int k = 0; k < 4; ++k) {
+    const int axis = k % 2;
+    const double offset = k < 2 ? probe_offset_m : -probe_offset_m;
+    ResolvedRequest probe = current;
+    probe.handle_coordinates[chosen->column + 2 + axis] += offset;  // the translation's x or y (request.cpp)
+    for (const Index row : chosen->rows) probe.handle_targets(row, axis) += offset;
+    try {
+      solve(probe, x1, x2, report);
+    } catch (const linalg::ConstraintError&) {
+      return;  // the constraints hold this drag where it is: no probe of it can be met
+    }
+    precompute_iterations_ = std::max(precompute_iterations_, report.iterations);
+  }
 }
 
 void IterativeSteps::solve_step(Step& step, const ResolvedRequest& current, const Eigen::VectorXcd& du,
