@@ -50,8 +50,9 @@ class AtomicOutput {
   /// Starts flushing what the temporary holds so far to disk (fdatasync) on a thread of its own and returns at
   /// once; does nothing while an earlier one still runs. A writer that makes its file over a long run calls it
   /// after each large write, so the disk works while the program computes and commit() waits only for the rest
-  /// (`throng sketch` with `--compression none` at 10,000 agents: 98 → 84 ms, bench_sketch_command; the flush,
-  /// 21 ms of the 98, is mostly the disk's, not the CPU's). commit() and the destructor wait for it.
+  /// (`throng sketch` with `--compression none` at 10,000 agents: 106–109 → 89–94 ms, bench_sketch_command; the
+  /// final flush had taken 21–23 ms of it, the disk's time more than the CPU's). commit() and the destructor wait
+  /// for it.
   void flush_in_background();
 
   /// Flushes the temporary file to disk, renames it onto the target and flushes the folder. Throws IoError if any
