@@ -15,6 +15,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <system_error>
 
 namespace throng {
 namespace {
@@ -197,7 +198,12 @@ void AtomicOutput::flush_in_background() {
     flush_error_ = flushing_.get();
   }
   // After a failure none starts again: commit() reports it.
-  if (flush_error_ == 0) flushing_ = std::async(std::launch::async, [fd = fd_] { return ::fdatasync(fd) == 0 ? 0 : errno; });
+  if (flush_error_ != 0 || fd_ < 0) return;
+  try {
+    flushing_ = std::async(std::launch::async, [fd = fd_] { return ::fdatasync(fd) == 0 ? 0 : errno; });
+  } catch (const std::system_error&) {
+    // No thread to be had (a process limit): commit's own flush does the work.
+  }
 }
 
 void AtomicOutput::commit() {

@@ -30,6 +30,10 @@ class EditSteps {
   /// complements) for the request last applied. Throws linalg errors (SingularMatrixError, NumericalError).
   virtual void precompute(const ResolvedRequest& current) = 0;
 
+  /// Whether drags will follow the first solve after the next precompute (an interactive editor, the default) or
+  /// not (a one-off edit): a method may prepare for them there (IterativeSteps seeds its drags' start).
+  virtual void expect_drags(bool drags_follow) { (void)drags_follow; }
+
   /// Whether solve() would need precompute() first.
   [[nodiscard]] virtual bool is_ready() const = 0;
 

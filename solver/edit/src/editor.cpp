@@ -248,9 +248,11 @@ Editor::Editor(const CrowdMotion& crowd, const Options& options, const Request& 
 
 Editor::~Editor() = default;
 
-void Editor::precompute() {
+void Editor::precompute(bool drags_follow) {
   State& s = *state_;
+  s.steps->expect_drags(drags_follow);
   s.in_user_terms([&] { s.steps->precompute(s.current); });
+  s.steps->expect_drags(true);  // a later precompute (new handles in a session) is for drags
   s.steps->describe(s.report);
 }
 
@@ -288,7 +290,7 @@ Result edit_group_motion(const CrowdMotion& crowd, const Options& options, const
     p.update(0.0, "edit: graph");
     Editor editor(crowd, options, request);
     p.update(0.2, "edit: factorise");
-    editor.precompute();
+    editor.precompute(false);  // one solve: no probe drags
     p.update(0.8, "edit: solve");
     const auto& samples = editor.deform(request);
     p.update(0.95, "edit: resample");

@@ -187,6 +187,7 @@ IterativeSteps::IterativeSteps(const MotionGraph& graph, const FeatureSet& featu
 IterativeSteps::~IterativeSteps() = default;
 
 void IterativeSteps::apply(const ResolvedRequest& resolved, const ResolvedRequest* previous) {
+  previous_handles_ = previous != nullptr ? previous->handle_vertices : std::vector<Index>{};
   if (previous == nullptr || resolved.handle_vertices != previous->handle_vertices) handles_stale_ = true;
   if (previous == nullptr || handles_stale_ || !same_matrix(resolved.handle_basis, previous->handle_basis)) basis_stale_ = true;
   if (previous == nullptr || handles_stale_ || !same_matrix(resolved.C, previous->C)) constraints_stale_ = true;
@@ -305,41 +306,48 @@ void IterativeSteps::precompute(const ResolvedRequest& current) {
     }
     constraints_stale_ = false;
   }
-  if (probe_now && step2_ && use_basis_ && nf > 0) probe_drags(current);
+  if (probe_now && drags_follow_ && step2_ && use_basis_ && nf > 0) probe_drags(current);
   columns_seconds_ = seconds_since(columns_start);
   precompute_seconds_ = seconds_since(start);
 }
 
 void IterativeSteps::probe_drags(const ResolvedRequest& current) {
-  // Which drag: the first one the request moves, else the last one (a selection just made, about to be dragged).
-  // It must place its handles alone, so that moving its coordinates moves exactly its rows.
-  const ResolvedRequest::DragPlacement* chosen = nullptr;
+  // The drag (see the header): a new one, else a moved one, else the last.
+  const ResolvedRequest::DragPlacement* added = nullptr;
+  const ResolvedRequest::DragPlacement* moved = nullptr;
+  const ResolvedRequest::DragPlacement* last = nullptr;
   for (const ResolvedRequest::DragPlacement& drag : current.drags) {
     if (!drag.alone || drag.rows.empty()) continue;
+    last = &drag;
     // Its coordinates (cos θ, sin θ, t_x, t_y) are (1, 0, 0, 0) when it holds its selection in place (request.cpp).
-    const Eigen::Vector4d motion = current.handle_coordinates.segment<4>(drag.column);
-    const bool moved = motion != Eigen::Vector4d(1, 0, 0, 0);
-    if (moved) {
-      chosen = &drag;
-      break;
-    }
-    chosen = &drag;
+    if (moved == nullptr && current.handle_coordinates.segment<4>(drag.column) != Eigen::Vector4d(1, 0, 0, 0)) moved = &drag;
+    const bool is_new = !previous_handles_.empty() && std::any_of(drag.rows.begin(), drag.rows.end(), [&](Index row) {
+      return !std::binary_search(previous_handles_.begin(), previous_handles_.end(), current.handle_vertices[static_cast<std::size_t>(row)]);
+    });
+    if (is_new) added = &drag;
   }
+  const ResolvedRequest::DragPlacement* chosen = added ? added : moved ? moved : last;
   if (chosen == nullptr) return;
   // It moved by probe_offset_m along +x, +y, −x and −y from where the request has it, each solved as a drag is;
   // the step-2 solutions stay in the history (four around the drag span its own solution too, to second order).
   Report report;
   Positions x1, x2;
+  ResolvedRequest probe = current;
   for (int k = 0; k < 4; ++k) {
     const int axis = k % 2;
     const double offset = k < 2 ? probe_offset_m : -probe_offset_m;
-    ResolvedRequest probe = current;
+    probe.handle_coordinates = current.handle_coordinates;
     probe.handle_coordinates[chosen->column + 2 + axis] += offset;  // the translation's x or y (request.cpp)
-    for (const Index row : chosen->rows) probe.handle_targets(row, axis) += offset;
+    for (const Index row : chosen->rows) {
+      probe.handle_targets.row(row) = current.handle_targets.row(row);
+      probe.handle_targets(row, axis) += offset;
+    }
     try {
       solve(probe, x1, x2, report);
-    } catch (const linalg::ConstraintError&) {
-      return;  // the constraints hold this drag where it is: no probe of it can be met
+    } catch (const NumericalError&) {
+      // The constraints hold this drag where it is, or the solver stopped short: the probes only speed drags up,
+      // so the precompute goes on without the rest (the drags report any real failure themselves).
+      return;
     }
     precompute_iterations_ = std::max(precompute_iterations_, report.iterations);
   }

@@ -47,6 +47,7 @@ class IterativeSteps final : public EditSteps {
   ~IterativeSteps() override;
 
   void apply(const ResolvedRequest& resolved, const ResolvedRequest* previous) override;
+  void expect_drags(bool drags_follow) override { drags_follow_ = drags_follow; }
   void precompute(const ResolvedRequest& current) override;
   [[nodiscard]] bool is_ready() const override;
   void solve(const ResolvedRequest& current, Positions& x1, Positions& x2, Report& report) override;
@@ -56,14 +57,18 @@ class IterativeSteps final : public EditSteps {
   struct Step;  // one step's system, preconditioner, handle basis and Schur complement
   void solve_step(Step& step, const ResolvedRequest& current, const Eigen::VectorXcd& du, const Eigen::VectorXcd* rhs,
                   Positions& x, Report& report);
-  // Seeds step 2's solution history (precompute, with a handle basis and scale compensation): one drag of
-  // `current` (the first it moves, else the last: the selection about to be dragged) moved probe_offset_m along
-  // +x, +y, −x and −y, each solved as a drag is (a probe the constraints cannot meet ends the probing). Why: a
+  // Seeds step 2's solution history (precompute, when drags follow, with a handle basis and scale compensation):
+  // one drag of `current` moved probe_offset_m along +x, +y, −x and −y, each solved as a drag is (a probe that
+  // fails, by the constraints or the solver, ends the probing). The drag: the last one that places a vertex the
+  // previous request did not handle (a selection just added in a session), else the first the request moves,
+  // else the last; one that places its vertices alone (so that its coordinates move exactly its rows). Why: a
   // drag's step 2 starts from the span of the solutions before it, and without them the first drags of a gesture
   // cost the most (10,000 agents: 116 and 24 CG iterations, 19 and 4.2 s, against 1-2 once two drags were
   // solved; with the probes 2, then 1). The probes move that cost into the precompute, once per handle set.
   void probe_drags(const ResolvedRequest& current);
   static constexpr double probe_offset_m = 1.0;  // how far a probe moves the drag
+  bool drags_follow_ = true;                     // expect_drags
+  std::vector<Eigen::Index> previous_handles_;   // the handle vertices of the request applied before (sorted)
 
   const MotionGraph& graph_;
   const FeatureSet& features_;

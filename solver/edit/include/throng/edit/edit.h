@@ -227,7 +227,7 @@ struct Report {
   // How the global systems were solved (Editor; SolverOptions::method):
   std::string method;                  ///< "direct" or "iterative" ("auto" resolved)
   int iterations = 0;                  ///< iterative: conjugate-gradient iterations of the last deform(), both steps
-  int precompute_iterations = 0;       ///< iterative: the most any precompute solve took (handle bases, constraint columns)
+  int precompute_iterations = 0;       ///< iterative: the most any precompute solve took (handle bases, constraint columns, probe drags)
   /// iterative: the estimated error left by the last deform()'s conjugate gradients (metres; linalg's
   /// conjugate_gradients.h: the last step times ρ/(1 − ρ)), at most SolverOptions::position_tolerance (0: no
   /// iteration was needed)
@@ -255,7 +255,9 @@ class Editor {
   /// Analyses and factorises both steps for the current handles and constraints, and solves step 1's fixed
   /// right-hand side once (so no drag pays that back-substitution). Throws NumericalError when the system is
   /// singular (naming an agent and frame that are not determined) or the constraints contradict each other.
-  void precompute();
+  /// `drags_follow`: more drags of these handles will come (an interactive editor): the iterative method then also
+  /// solves a few probe drags so that the first drags start close (docs/commands/edit.md); false for one solve.
+  void precompute(bool drags_follow = true);
 
   /// Deforms for `request`. Same handled vertices and constraint kinds as before: back-substitutions only;
   /// otherwise the handles or constraints are replaced first (refactorisation, or a new Schur complement).
