@@ -12,7 +12,7 @@
 
 namespace throng::h5::detail {
 
-// Deflate's level for compressed datasets (after shuffle): libdeflate's where throng filters the chunks itself
+// Deflate's level for compressed datasets (after shuffle): ISA-L's where throng filters the chunks itself
 // (filtered_chunks.h: every dataset written whole and the streamed frames), zlib's through libhdf5's own filter
 // for the datasets that grow as they are written (hdf5_growing.cpp); both are zlib streams any reader decodes.
 // The measurements below were made with zlib. Measured on `throng sketch configs/sketch-large.yaml --set
