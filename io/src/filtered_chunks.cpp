@@ -5,6 +5,10 @@
 
 #include <isa-l/igzip_lib.h>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -44,14 +48,19 @@ void shuffle(const unsigned char* in, std::size_t bytes, std::size_t element_siz
   }
 }
 
-// ISA-L 2.30's AVX-512 deflate returns with the upper halves of the vector registers dirty (no vzeroupper): every
-// SSE instruction after it, on that thread, then pays for merging them, and throng's code (built for baseline
-// x86-64, SSE2) ran 3.6x slower on that thread (a float loop 11.7 -> 42.7 ms; the sketch's simulation 2x). One
-// vzeroupper after each call clears them; it leaves the low 128 bits that SSE code uses untouched.
+// ISA-L 2.30's AVX2 and AVX-512 deflate code returns with the upper halves of the vector registers dirty (no
+// vzeroupper): every SSE instruction after it, on that thread, then pays for merging them, and throng's code (built
+// for baseline x86-64, SSE2) ran 3.6x slower on that thread (a float loop 11.7 -> 42.7 ms; the sketch's simulation
+// 2x). One vzeroupper after each call clears them; it leaves the low 128 bits that SSE code uses untouched. In a
+// function of its own built for AVX, so that the compiler knows what the instruction clobbers.
+#if defined(__x86_64__)
+__attribute__((target("avx"))) void zero_upper_halves() { _mm256_zeroupper(); }
+#endif
+
 void clear_upper_vector_state() {
 #if defined(__x86_64__)
   static const bool has_avx = __builtin_cpu_supports("avx");
-  if (has_avx) asm volatile("vzeroupper" ::: "memory");
+  if (has_avx) zero_upper_halves();
 #endif
 }
 
@@ -92,7 +101,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   for (std::uint64_t first = 0; first < chunks; first += batch_chunks) {
     const std::uint64_t count = std::min(batch_chunks, chunks - first);
     std::vector<std::vector<unsigned char>> packed(count);
-    std::vector<char> failed(count, 0);
+    std::vector<int> failed(count, 0);  // ISA-L's status of each chunk that failed
     parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
       // One level buffer per task (ISA-L's hash tables and token space, about 0.3 MB; buffers kept per thread
       // instead measured no faster).
@@ -113,8 +122,11 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
           shuffle(chunk, chunk_bytes, layout.element_size, shuffled.data());
           chunk = shuffled.data();
         }
-        isal_zstream stream;
+        // Value-initialised first: 2.30's init leaves hist_bits (the match window) unset, and garbage there would
+        // make a chunk's bytes differ from run to run (0: the default, 32 KiB).
+        isal_zstream stream{};
         isal_deflate_stateless_init(&stream);
+        stream.hist_bits = 0;
         stream.level = static_cast<std::uint32_t>(isal_level(layout.level));
         stream.level_buf = level_buffer.data();
         stream.level_buf_size = static_cast<std::uint32_t>(level_buffer.size());
@@ -127,12 +139,15 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
         stream.avail_out = static_cast<std::uint32_t>(out.size());
         const int status = isal_deflate_stateless(&stream);
         clear_upper_vector_state();
-        if (status != COMP_OK) failed[k] = 1;  // not within the bound: a failure, not an empty chunk
+        if (status != COMP_OK) failed[k] = status;  // not within the bound: a failure, not an empty chunk
         else packed[k].assign(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(stream.total_out));
       }
     });
     for (std::uint64_t k = 0; k < count; ++k) {
-      if (failed[k]) throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(first + k));
+      if (failed[k] != 0) {
+        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(first + k) +
+                      " (status " + std::to_string(failed[k]) + ")");
+      }
       write((first + k) * layout.chunk_rows, packed[k]);
     }
   }

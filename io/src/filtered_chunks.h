@@ -4,8 +4,8 @@
 // agents. Here each chunk goes through the same pipeline libhdf5 would run (the shuffle filter's byte transpose,
 // then deflate at the dataset's level into a zlib stream) on its own task (throng::parallel_for), and is handed in
 // chunk order to the caller, who writes it as it is (H5Dwrite_chunk). Deflate is ISA-L's (Intel's igzip), not
-// zlib's: on shuffled float64 frames of a 10,000-agent sketch its level 1 ran at 420-480 MB/s a core, 3.2-3.5x
-// libdeflate's level 1 (used before, itself 2-2.6x zlib's) for 0-2 % more bytes; its streams are ordinary zlib
+// zlib's: on shuffled float64 frames of a 10,000-agent sketch its level 1 ran at 420-480 MB/s a core, 3.1-3.5x
+// libdeflate's level 1 (used before, itself 2-2.6x zlib's) for 1-5 % more bytes; its streams are ordinary zlib
 // streams, so every HDF5 reader inflates them with zlib.
 // Every chunk's bytes depend on its rows alone, so the file is the same whatever the thread count, and any HDF5
 // reader decodes it as one written by H5Dwrite.

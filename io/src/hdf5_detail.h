@@ -19,8 +19,8 @@ namespace throng::h5::detail {
 // agents.count=6000 --set duration=60` (601 frames, 2 cores, libhdf5 filtering on one thread, medians of 2):
 // level 4 8.35 s and 122.9 MB, level 3 8.2 s, level 2 6.5 s, level 1 5.8 s and 124.4 MB (+1.3 %); without
 // compression 2.9-3.3 s and 246 MB. Level 1: 30 % off the command for 1.3 % more bytes (formation-hierarchy-1260:
-// 2.48 → 1.96 s). Every reader decodes any level. With the chunks filtered in parallel (filtered_chunks.h) the
-// same command takes 4.20 s (median of 5).
+// 2.48 → 1.96 s). Every reader decodes any level. With the chunks filtered in parallel (filtered_chunks.h, then
+// libdeflate) the same command took 4.20 s (median of 5); ISA-L's level 1 since (docs/commands/sketch.md).
 constexpr int deflate_level = 1;
 
 /// Once per process, before the first call into libhdf5: no error stack on stderr, no filter plugins, no exit
