@@ -326,15 +326,15 @@ struct TilingStreamWriter::Impl {
     if (edges) {
       const Region& r = *setup.environment->scene.region;
       const std::array<double, 9> side = detail::box_edges_frame(r);
-      std::vector<double> rows;
-      for (std::size_t f = 0; f < F; ++f) rows.insert(rows.end(), side.begin(), side.end());
-      edges->append(F, rows.data());
+      std::vector<double> edge_rows;
+      for (std::size_t f = 0; f < F; ++f) edge_rows.insert(edge_rows.end(), side.begin(), side.end());
+      edges->append(F, edge_rows.data());
     }
     record.frames = T;
-    const std::vector<std::int32_t> species(new_ids.size(), 0);
+    const std::vector<std::int32_t> new_species(new_ids.size(), 0);
     agent_id->append(new_ids.size(), new_ids.data());
     agent_radius->append(new_radii.size(), new_radii.data());
-    agent_species->append(species.size(), species.data());
+    agent_species->append(new_species.size(), new_species.data());
     record.agents += new_ids.size();
 
     std::vector<double> measured;
