@@ -151,11 +151,15 @@ Handle dataset_properties(const std::vector<std::uint64_t>& shape, std::size_t e
     rows = std::min<std::uint64_t>(rows, shape[0]);
     std::vector<hsize_t> chunk(shape.begin(), shape.end());
     chunk[0] = rows;
+    // Rank 3 or more ([frames][agents][components]): one component per chunk (ChunkedLayout::components), the
+    // chunk's frames chosen for the whole row as before, so reading a frame decodes the same bytes.
+    const std::uint64_t components = shape.size() >= 3 ? shape.back() : 1;
+    chunk.back() = shape.size() >= 3 ? 1 : chunk.back();
     H5Pset_chunk(p.id(), static_cast<int>(chunk.size()), chunk.data());
     // Exactly these two filters, in this order: filter_chunks (filtered_chunks.h) applies the same pipeline.
     H5Pset_shuffle(p.id());
     H5Pset_deflate(p.id(), deflate_level);
-    if (chunked) *chunked = {shape[0], row, rows, element_size, deflate_level};
+    if (chunked) *chunked = {shape[0], row, rows, element_size, deflate_level, components};
   }
   return p;
 }
@@ -176,8 +180,9 @@ void write_numeric(const Group& g, const std::string& name, const std::vector<T>
   if (chunked.chunk_rows > 0 && H5Tequal(memory_type, file_type) > 0) {
     std::vector<hsize_t> offset(shape.size(), 0);
     detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data()), chunked, g.where(name),
-                          [&](std::uint64_t first_row, const std::vector<unsigned char>& bytes) {
+                          [&](std::uint64_t first_row, std::uint64_t component, const std::vector<unsigned char>& bytes) {
                             offset[0] = first_row;
+                            if (chunked.components > 1) offset.back() = component;
                             // Filter mask 0: every filter of the dataset (shuffle, then deflate) was applied.
                             check(H5Dwrite_chunk(set.id(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
                                   "cannot write " + g.where(name));

@@ -52,6 +52,8 @@ void write_all(const std::filesystem::path& path, std::size_t threads) {
   f.root().write("int64", i64, {rows}, h5::Layout{true, 1000});
   f.root().write("int32", i32, {rows}, h5::Layout{true, 1000});
   f.root().write("one_row", std::vector<double>{1, 2, 3}, {1, 3}, h5::Layout{true});  // one chunk, one row
+  // [frames][agents][3], as positions are: chunks of one component (100 frames × 10 agents × 1), the last partial.
+  f.root().write("frames", ramp(1050 * 10), {1050, 10, 3}, h5::Layout{true, 100});
   f.close();
 }
 
@@ -89,6 +91,9 @@ TEST_CASE("compressed datasets read back exactly, edge chunk included, and their
     REQUIRE(i32.values[i] == static_cast<std::int32_t>(i % 977) - 300);
   }
   CHECK(f.root().read_doubles("one_row", 2).values == std::vector<double>{1, 2, 3});
+  const auto frames = f.root().read_doubles("frames", 3);
+  CHECK(frames.shape == std::vector<std::uint64_t>{1050, 10, 3});
+  CHECK(frames.values == ramp(1050 * 10));
   // Compressed: the ramp's 252 KB take far less.
   CHECK(std::filesystem::file_size(dir / "two.h5") < 200'000);
 }
@@ -106,6 +111,12 @@ TEST_CASE("h5py reads a dataset written by the parallel chunk writer as libhdf5'
       "want = (0.001 * i + np.where(i % 3 == 0, 0.5, 0.0)).reshape(10500, 3)\n"
       "assert np.array_equal(d[()], want)\n"
       "assert np.array_equal(f['int32'][()], (np.arange(10500) % 977) - 300)\n"
+      "p = f['frames']\n"
+      "assert p.compression == 'gzip' and p.shuffle and p.chunks == (100, 10, 1), (p.compression, p.shuffle, p.chunks)\n"
+      "i = np.arange(1050 * 10 * 3)\n"
+      "want = (0.001 * i + np.where(i % 3 == 0, 0.5, 0.0)).reshape(1050, 10, 3)\n"
+      "assert np.array_equal(p[()], want)\n"
+      "assert np.array_equal(p[1049, :, 2], want[1049, :, 2])  # one component of the edge chunk\n"
       "print('ok')\n";
   std::ofstream(dir / "check.py") << script;
   std::string out;

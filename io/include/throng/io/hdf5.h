@@ -56,7 +56,8 @@ struct Array {
   std::vector<std::uint64_t> shape;
 };
 
-/// Layout of a new dataset: compressed datasets are chunked along their first axis.
+/// Layout of a new dataset: compressed datasets are chunked along their first axis; of rank 3 or more, also one
+/// index of the last axis (a component) per chunk, which the shuffle and deflate filters compress better and faster.
 struct Layout {
   bool compress = false;             ///< shuffle + deflate
   std::uint64_t chunk_rows = 0;      ///< rows of the first axis per chunk; 0 = choose (~256 KiB chunks)
