@@ -139,7 +139,8 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   const std::uint64_t rows_bytes = layout.chunk_rows * layout.row_bytes;  // a chunk's rows, every component
   const std::uint64_t chunk_bytes = rows_bytes / C;
   if (zlib_stream_bound(rows_bytes) > std::numeric_limits<std::uint32_t>::max()) {  // libhdf5's limit is 4 GiB too
-    throw std::logic_error("filter_chunks: a chunk of " + std::to_string(rows_bytes) + " bytes is beyond ISA-L's 32-bit sizes");
+    // (A chunk's rows, every component: a bound C times stricter than the chunk needs, kept simple.)
+    throw std::logic_error("filter_chunks: a chunk's rows of " + std::to_string(rows_bytes) + " bytes are beyond ISA-L's 32-bit sizes");
   }
   // Chunk k: rows from (k / C) × chunk_rows, component k % C.
   const std::uint64_t chunks = (layout.rows + layout.chunk_rows - 1) / layout.chunk_rows * C;
@@ -151,10 +152,12 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
       // One level buffer per task (ISA-L's hash tables and token space, about 0.3 MB; buffers kept per thread
       // instead measured no faster).
-      // Left uninitialised (ISA-L resets what it reads of the level buffer; the others are written before they are
-      // read): zeroing them cost about 1 % of `throng sketch` at 10,000 agents.
+      // Left uninitialised (ISA-L's level 1 resets what it reads of the level buffer; the others are written before
+      // they are read): zeroing them cost about 1 % of `throng sketch` at 10,000 agents. Levels 2-3 gave the same
+      // streams from garbage too, but valgrind saw their assembly branch on it: zeroed there.
       const std::size_t level_bytes = level_buffer_bytes(layout.level), out_bytes = zlib_stream_bound(chunk_bytes);
       const auto level_buffer = std::make_unique_for_overwrite<std::uint8_t[]>(level_bytes);
+      if (isal_level(layout.level) > 1) std::memset(level_buffer.get(), 0, level_bytes);
       const auto shuffled = std::make_unique_for_overwrite<unsigned char[]>(transposed ? chunk_bytes : 0);
       const auto gathered = std::make_unique_for_overwrite<unsigned char[]>(C > 1 ? chunk_bytes : 0);
       const auto out = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);

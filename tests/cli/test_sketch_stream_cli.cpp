@@ -87,7 +87,8 @@ std::string without_filters(const std::string& layout) {
 
 // A layout from storage_layout() with the chunks of [frames][agents][components] datasets taken whole along the
 // last axis, as plain storage keeps them: "CHUNKED ( 163, 50, 1 )" of a 4-component dataset reads
-// "CHUNKED ( 163, 50, 4 )". `components`: each dataset's last axis, in the layout's order.
+// "CHUNKED ( 163, 50, 4 )". `components`: each dataset's last axis, in the layout's order (the scenes have many
+// agents, so no two-axis chunk ends in ", 1 )").
 std::string whole_components(const std::string& layout, const std::vector<int>& components) {
   std::string kept;
   std::istringstream lines(layout);

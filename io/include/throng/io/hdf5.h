@@ -60,7 +60,8 @@ struct Array {
 /// index of the last axis (a component) per chunk, which the shuffle and deflate filters compress better and faster.
 struct Layout {
   bool compress = false;             ///< shuffle + deflate
-  std::uint64_t chunk_rows = 0;      ///< rows of the first axis per chunk; 0 = choose (~256 KiB chunks)
+  std::uint64_t chunk_rows = 0;      ///< rows of the first axis per chunk; 0 = choose (~256 KiB of rows; of rank 3
+                                     ///< or more, each of the last axis's components a chunk of its own)
 };
 
 /// What a file opened for reading checks against: its size, its memory budget, its link access rules (defined in
