@@ -161,15 +161,19 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       const auto shuffled = std::make_unique_for_overwrite<unsigned char[]>(transposed ? chunk_bytes : 0);
       const auto gathered = std::make_unique_for_overwrite<unsigned char[]>(C > 1 ? chunk_bytes : 0);
       const auto out = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);
-      std::vector<unsigned char> padded;
+      std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
+      std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
       for (std::size_t k = begin; k < end; ++k) {
         const std::uint64_t row0 = (first + k) / C * layout.chunk_rows, component = (first + k) % C;
         const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
         const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
         const unsigned char* chunk = source;
         if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes (libhdf5's fill)
-          padded.assign(rows_bytes, 0);
-          std::memcpy(padded.data(), source, rows * layout.row_bytes);
+          if (padded_row0 != row0) {
+            padded.assign(rows_bytes, 0);
+            std::memcpy(padded.data(), source, rows * layout.row_bytes);
+            padded_row0 = row0;
+          }
           chunk = padded.data();
         }
         if (transposed) {

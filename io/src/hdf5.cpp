@@ -154,7 +154,7 @@ Handle dataset_properties(const std::vector<std::uint64_t>& shape, std::size_t e
     // Rank 3 or more ([frames][agents][components]): one component per chunk (ChunkedLayout::components), the
     // chunk's frames chosen for the whole row as before, so reading a frame decodes the same bytes.
     const std::uint64_t components = shape.size() >= 3 ? shape.back() : 1;
-    chunk.back() = shape.size() >= 3 ? 1 : chunk.back();
+    if (components > 1) chunk.back() = 1;
     H5Pset_chunk(p.id(), static_cast<int>(chunk.size()), chunk.data());
     // Exactly these two filters, in this order: filter_chunks (filtered_chunks.h) applies the same pipeline.
     H5Pset_shuffle(p.id());
