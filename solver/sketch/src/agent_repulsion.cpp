@@ -1,11 +1,13 @@
 #include "agent_repulsion.h"
 
+#include "neighbour_sum.h"
+
 #include <throng/core/random.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <numbers>
 
 namespace throng::sketch::detail {
@@ -26,51 +28,22 @@ Eigen::Vector2d agent_repulsion(const NeighbourGrid& grid, std::size_t slot, con
   const double* sx = grid.sorted_x().data();
   const double* sy = grid.sorted_y().data();
   const std::size_t nx = grid.columns(), ny = grid.rows();
-  const double px = p.x(), py = p.y(), r2 = r * r;
+  const double px = p.x(), py = p.y();
+  // The agent at p is counted among the candidates at p below: p must be its place in the grid.
+  assert(slot < grid.in_grid_count() && sx[slot] == px && sy[slot] == py);
   const std::size_t cx = grid.column(px), cy = grid.row(py);
   const std::size_t c0 = cx > 0 ? cx - 1 : 0, c1 = std::min(cx + 1, nx - 1);
   const std::size_t r0 = cy > 0 ? cy - 1 : 0, r1 = std::min(cy + 1, ny - 1);
-  double ax = 0, ay = 0;
-  bool coincident = false;
-  // Two candidates at a time in SSE2 lanes (GCC/Clang vector extensions), branch-free: every candidate computes
-  // r/d − 1 (on d = r when out of reach) and is masked by `near`. Lane sums are added in a fixed order, so the
-  // result does not depend on the thread count.
-  using Pair = double __attribute__((vector_size(16)));
-  using Mask = std::int64_t __attribute__((vector_size(16)));
-  const Pair vpx = {px, px}, vpy = {py, py}, vr = {r, r}, vr2 = {r2, r2}, zero = {0, 0}, one = {1, 1};
-  Pair vax = zero, vay = zero;
-  for (std::size_t row = r0; row <= r1; ++row) {
+  NeighbourQuery query{sx, sy, {}, {}, 0, px, py, r};
+  for (std::size_t row = r0; row <= r1; ++row, ++query.ranges) {
     // The three cells of a row are consecutive slots.
-    const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
-    std::uint32_t l = from;
-    for (; l + 2 <= to; l += 2) {
-      Pair qx, qy;
-      std::memcpy(&qx, sx + l, sizeof qx);
-      std::memcpy(&qy, sy + l, sizeof qy);
-      const Pair dx = vpx - qx, dy = vpy - qy;
-      const Pair d2 = dx * dx + dy * dy;
-      const Mask near = (d2 < vr2) & (d2 > zero);
-      const Pair safe = near ? d2 : vr2;
-      const Pair root = {std::sqrt(safe[0]), std::sqrt(safe[1])};
-      const Pair c = near ? vr / root - one : zero;
-      vax += c * dx;
-      vay += c * dy;
-      coincident |= (d2[0] == 0 && l != slot) || (d2[1] == 0 && l + 1 != slot);
-    }
-    for (; l < to; ++l) {
-      const double dx = px - sx[l], dy = py - sy[l];
-      const double d2 = dx * dx + dy * dy;
-      if (d2 < r2 && d2 > 0) {
-        const double c = r / std::sqrt(d2) - 1.0;
-        ax += c * dx;
-        ay += c * dy;
-      }
-      coincident |= d2 == 0 && l != slot;
-    }
+    query.from[query.ranges] = grid.cell_start(row * nx + c0);
+    query.to[query.ranges] = grid.cell_start(row * nx + c1 + 1);
   }
-  ax += vax[0] + vax[1];
-  ay += vay[0] + vay[1];
-  if (coincident) {
+  const NeighbourSum sum = has_avx2() ? neighbour_sum_avx2(query) : neighbour_sum_sse2(query);
+  double ax = sum.x, ay = sum.y;
+  // Candidates at p: the agent itself (its own cell is searched, and p is its place there) and any other.
+  if (sum.at_p > 1) {
     // Same place: (p_j − p_l)(r/d − 1) has length r − d → r, in a direction fixed by the pair.
     for (std::size_t row = r0; row <= r1; ++row) {
       const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);

@@ -2,7 +2,9 @@
 
 #include <throng/core/parallel.h>
 
+#include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <limits>
 
 namespace throng::sketch::detail {
@@ -11,7 +13,9 @@ void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double
                           const std::vector<std::uint8_t>& in_grid, std::size_t count,
                           const Eigen::AlignedBox2d& bounds, double min_cell) {
   const std::size_t n = x.size();
-  assert(y.size() == n && in_grid.size() == n && count <= n && n < std::numeric_limits<std::uint32_t>::max());
+  // Slots and the reads past them (padding) stay below 2^32.
+  assert(y.size() == n && in_grid.size() == n && count <= n &&
+         n < std::numeric_limits<std::uint32_t>::max() - padding - 4);
   in_grid_ = count;
   double x_min = 0, y_min = 0, x_max = 0, y_max = 0;
   if (count > 0) {
@@ -35,31 +39,76 @@ void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double
   y0_ = y_min;
   nx_ = static_cast<std::size_t>(std::floor(wx * inv_h_)) + 1;
   ny_ = static_cast<std::size_t>(std::floor(wy * inv_h_)) + 1;
+  last_column_ = static_cast<double>(nx_ - 1);
+  last_row_ = static_cast<double>(ny_ - 1);
 
-  // Counting sort: count, prefix sum, scatter (agent index order within a cell).
+  // Counting sort in two parts of the agents (one below 8,192 agents), each part's cells counted and its agents
+  // scattered on a core of its own: count per part, prefix sum over (cell, part) in that order, scatter. Within a
+  // cell come part 0's agents, then part 1's, each in index order: agent index order, the order of a serial
+  // counting sort, however many parts. Two, not one per core: the prefix sum runs over cells × parts on one core
+  // (bench/sketch BM_Step at 1,000,000 agents on 2 threads: 4 parts 1,013 ms, 2 parts 935 ms, serial 1,086 ms).
   const std::size_t cells = nx_ * ny_;
-  start_.assign(cells + 1, 0);
+  const std::size_t parts = std::clamp<std::size_t>(n / 4096, 1, 2);
+  const std::size_t part_size = (n + parts - 1) / parts;
+  const auto part_end = [&](std::size_t part) { return std::min(n, (part + 1) * part_size); };
+  counts_.resize(parts * cells);
+  outside_.assign(parts + 1, 0);
   cell_of_.resize(n);
-  parallel_for(n, 4096, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) cell_of_[i] = static_cast<std::uint32_t>(cell(x[i], y[i]));
+  parallel_for(parts, 1, [&](std::size_t first_part, std::size_t last_part) {
+    for (std::size_t part = first_part; part < last_part; ++part) {
+      std::uint32_t* count_of = counts_.data() + part * cells;
+      std::fill(count_of, count_of + cells, 0u);
+      std::uint32_t left_out = 0;
+      for (std::size_t i = part * part_size; i < part_end(part); ++i) {
+        const auto c = static_cast<std::uint32_t>(cell(x[i], y[i]));
+        cell_of_[i] = c;
+        const std::uint32_t in = in_grid[i] != 0;  // without a branch: most agents are in, a few left out
+        count_of[c] += in;
+        left_out += 1 - in;
+      }
+      outside_[part + 1] = left_out;
+    }
   });
-  for (std::size_t i = 0; i < n; ++i) {
-    if (in_grid[i]) ++start_[cell_of_[i] + 1];
+  // Each part's count in each cell becomes its first slot there.
+  start_.resize(cells + 1);
+  std::uint32_t next = 0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    start_[c] = next;
+    for (std::size_t part = 0; part < parts; ++part) {
+      std::uint32_t& slots = counts_[part * cells + c];
+      const std::uint32_t first = next;
+      next += slots;
+      slots = first;
+    }
   }
-  for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+  start_[cells] = next;
+  assert(next == count);
+  outside_[0] = static_cast<std::uint32_t>(count);
+  for (std::size_t part = 0; part < parts; ++part) outside_[part + 1] += outside_[part];
+
   order_.resize(n);
-  sorted_x_.resize(n);
-  sorted_y_.resize(n);
-  // Scatter with a moving cursor per cell; start_ is restored afterwards by shifting.
-  std::uint32_t outside = static_cast<std::uint32_t>(count);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t slot = in_grid[i] ? start_[cell_of_[i]]++ : outside++;
-    order_[slot] = static_cast<std::uint32_t>(i);
-    sorted_x_[slot] = x[i];
-    sorted_y_[slot] = y[i];
-  }
-  for (std::size_t c = cells; c > 0; --c) start_[c] = start_[c - 1];
-  start_[0] = 0;
+  // The agents left out have no position here. The padding is zeros: a search masks what it reads there, and a
+  // masked lane's term is 0 × a finite offset (NaN would make it NaN).
+  sorted_x_.resize(count + padding);
+  sorted_y_.resize(count + padding);
+  std::fill(sorted_x_.begin() + static_cast<std::ptrdiff_t>(count), sorted_x_.end(), 0.0);
+  std::fill(sorted_y_.begin() + static_cast<std::ptrdiff_t>(count), sorted_y_.end(), 0.0);
+  parallel_for(parts, 1, [&](std::size_t first_part, std::size_t last_part) {
+    for (std::size_t part = first_part; part < last_part; ++part) {
+      std::uint32_t* cursor = counts_.data() + part * cells;
+      std::uint32_t outside = outside_[part];
+      for (std::size_t i = part * part_size; i < part_end(part); ++i) {
+        if (!in_grid[i]) {
+          order_[outside++] = static_cast<std::uint32_t>(i);
+          continue;
+        }
+        const std::uint32_t slot = cursor[cell_of_[i]]++;
+        order_[slot] = static_cast<std::uint32_t>(i);
+        sorted_x_[slot] = x[i];
+        sorted_y_[slot] = y[i];
+      }
+    }
+  });
 }
 
 }  // namespace throng::sketch::detail

@@ -121,6 +121,7 @@ struct Simulation::Impl {
   std::vector<double> tangent_x, tangent_y;         // K: unit direction of the main line at k (central difference)
   std::vector<double> weight;                       // N by A: o_{j,i} of the auxiliary lines
   std::vector<double> draw;                         // N: u_j
+  std::vector<double> end_x, end_y;                 // N: target(j, K − 1), each agent's end point
 
   std::array<State, 2> states;
   int current = 0;
@@ -173,10 +174,12 @@ struct Simulation::Impl {
   // Target advancement: while the agent at p is within R of its target, has passed it (is ahead of the line
   // through the target across the path), or the target lies in an obstacle at time t (where no agent can reach
   // it), the target moves on. True when that happens at the last point.
-  [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k, double t) const {
+  // `goal` is target(j, k) (the step computed it for the force).
+  [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k, double t,
+                                   Eigen::Vector2d goal) const {
     const double R2 = options.follow_radius_m * options.follow_radius_m;
-    for (;;) {
-      const Eigen::Vector2d goal = target(j, k);
+    for (bool first = true;; first = false) {
+      if (!first) goal = target(j, k);
       const Eigen::Vector2d d = p - goal;
       const bool reached = d.squaredNorm() <= R2 || d.x() * tangent_x[k] + d.y() * tangent_y[k] > 0 ||
                            (!obstacles.empty() && obstacles.overlaps(goal, t));
@@ -212,7 +215,8 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
     throw InputError("sketch: agent parameters disagree with " + std::to_string(N) + " agents and " +
                      std::to_string(A + 1) + " strokes (build them with agent_parameters or place_agents)");
   }
-  if (N >= std::numeric_limits<std::uint32_t>::max()) throw InputError("sketch: too many agents");
+  // The neighbour grid's slots, and its searches' reads a few past them, are 32-bit.
+  if (N >= std::numeric_limits<std::uint32_t>::max() - 16) throw InputError("sketch: too many agents");
 
   main_x.resize(K);
   main_y.resize(K);
@@ -252,6 +256,13 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
     }
   }
   draw = agents.correction_draw;
+  end_x.resize(N);
+  end_y.resize(N);
+  for (std::uint32_t j = 0; j < N; ++j) {
+    const Eigen::Vector2d end = target(j, static_cast<std::uint32_t>(K - 1));
+    end_x[j] = end.x();
+    end_y[j] = end.y();
+  }
 
   State& s0 = now();
   s0.x.resize(N);
@@ -295,7 +306,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
     if (!obstacles.empty() && !obstacles.keep_clear(p, p, 0.0)) ++unresolved;
     s0.x[j] = p.x();
     s0.y[j] = p.y();
-    if (reach_targets(j, p, s0.k[j], 0.0)) {
+    if (reach_targets(j, p, s0.k[j], 0.0, target(j, s0.k[j]))) {
       s0.status[j] = arrived;
       arrival[j] = 0.0;
     }
@@ -359,9 +370,12 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   // A change of the walking velocity over one step, at most max_acceleration Δt long (sketch.h).
   const double largest_change = options.max_acceleration_m_s2 > 0 ? options.max_acceleration_m_s2 * dt : 0.0;
   const bool has_obstacles = !obstacles.empty();
+  // change, scaled down to largest_change when longer. Without a branch on the length (whether an agent is at
+  // its acceleration bound changes from step to step): min(1, L/n) is L/n when n > L and exactly 1 otherwise, and
+  // change × 1 is change, so the bits are those of the branch.
   auto bounded = [largest_change](const Eigen::Vector2d& change) -> Eigen::Vector2d {
-    const double n = change.norm();
-    return largest_change > 0 && n > largest_change ? Eigen::Vector2d(change * (largest_change / n)) : change;
+    if (!(largest_change > 0)) return change;
+    return change * std::min(1.0, largest_change / change.norm());
   };
   // The filtered walking velocity `before` changed by `change` (bounded), then slowed toward obstacles ahead so
   // the agent can stop short of them at max_acceleration, and stepping aside for moving ones: without it, an
@@ -390,6 +404,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   constexpr std::size_t block_size = 64;
   std::array<Move, block_size> move{};
   std::array<double, block_size> fx{}, fy{};  // the force (walking) or the overlap (standing), pass 1
+  std::array<double, block_size> gx{}, gy{};  // the target (walking), pass 1
   std::array<double, block_size> qx{}, qy{}, ux{}, uy{};  // the new position and walking velocity, pass 2
   std::array<std::int8_t, block_size> sides{};  // the side round an obstacle (walking), pass 1
   for (std::size_t first = begin; first < end; first += block_size) {
@@ -406,7 +421,10 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       if (s.status[j] == walking) {
         move[i] = Move::along_force;
         // Eq. 14: pull toward the target beyond R.
-        const Eigen::Vector2d to_goal = target(j, k) - p;
+        const Eigen::Vector2d goal = target(j, k);
+        gx[i] = goal.x();
+        gy[i] = goal.y();
+        const Eigen::Vector2d to_goal = goal - p;
         const double dist = to_goal.norm();
         Eigen::Vector2d pull = Eigen::Vector2d::Zero();
         if (dist > R) pull = (w_traj * (1.0 - R / dist)) * to_goal;
@@ -497,11 +515,11 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       if (status == walking) {
         bool joins = false;
         if (end_reach > R) {
-          const double to_end = (target(j, static_cast<std::uint32_t>(K - 1)) - q).norm();
+          const double to_end = (Eigen::Vector2d(end_x[j], end_y[j]) - q).norm();
           joins = to_end <= end_reach ||
                   (to_end <= 2 * end_reach && touches_standing(slot, Eigen::Vector2d(s.x[j], s.y[j]), avoidance(j, k)));
         }
-        if (reach_targets(j, q, k, t1) || joins) {
+        if (reach_targets(j, q, k, t1, Eigen::Vector2d(gx[i], gy[i])) || joins) {
           k = static_cast<std::uint32_t>(K - 1);
           status = arrived;
           arrival[j] = t1;  // agent j's own entry: no other task writes it
