@@ -45,9 +45,8 @@ Eigen::Vector2d agent_repulsion(const NeighbourGrid& grid, std::size_t slot, con
   // Candidates at p: the agent itself (its own cell is searched, and p is its place there) and any other.
   if (sum.at_p > 1) {
     // Same place: (p_j − p_l)(r/d − 1) has length r − d → r, in a direction fixed by the pair.
-    for (std::size_t row = r0; row <= r1; ++row) {
-      const std::uint32_t from = grid.cell_start(row * nx + c0), to = grid.cell_start(row * nx + c1 + 1);
-      for (std::uint32_t l = from; l < to; ++l) {
+    for (std::size_t range = 0; range < query.ranges; ++range) {
+      for (std::uint32_t l = query.from[range]; l < query.to[range]; ++l) {
         if (l == slot || sx[l] != px || sy[l] != py) continue;
         const Eigen::Vector2d u = coincident_direction(order[slot], order[l]);
         ax += r * u.x();

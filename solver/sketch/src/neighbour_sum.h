@@ -26,7 +26,7 @@ struct NeighbourSum {
 /// The order of the sum, the same in both: candidates in groups of four from each range's first slot (the group's
 /// lanes past the range masked out), lane m of every group into sum m (m = 0..3, ranges in turn), then
 /// (sum 0 + sum 1) + (sum 2 + sum 3). Each term is r/√d² − 1 times the offset, IEEE operations without fused
-/// multiply-adds, so both give the same bits.
+/// multiply-adds (the file is compiled with -ffp-contract=off), so both give the same bits.
 [[nodiscard]] NeighbourSum neighbour_sum_sse2(const NeighbourQuery& query) noexcept;
 /// The same with AVX2 (four lanes at once); call only where the processor has AVX2 (has_avx2()).
 [[nodiscard]] NeighbourSum neighbour_sum_avx2(const NeighbourQuery& query) noexcept;

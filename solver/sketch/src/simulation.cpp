@@ -178,14 +178,13 @@ struct Simulation::Impl {
   [[nodiscard]] bool reach_targets(std::uint32_t j, const Eigen::Vector2d& p, std::uint32_t& k, double t,
                                    Eigen::Vector2d goal) const {
     const double R2 = options.follow_radius_m * options.follow_radius_m;
-    for (bool first = true;; first = false) {
-      if (!first) goal = target(j, k);
+    for (;;) {
       const Eigen::Vector2d d = p - goal;
       const bool reached = d.squaredNorm() <= R2 || d.x() * tangent_x[k] + d.y() * tangent_y[k] > 0 ||
                            (!obstacles.empty() && obstacles.overlaps(goal, t));
       if (!reached) return false;
       if (k + 1 == K) return true;
-      ++k;
+      goal = target(j, ++k);
     }
   }
 
