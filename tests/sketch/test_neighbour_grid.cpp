@@ -1,7 +1,7 @@
 // The neighbour grid (solver/sketch/src/neighbour_grid.h): its counting sort, made in two parts of the agents on
 // two cores from 8,192 agents on, gives the order of a serial stable counting sort (cell by cell, agent index order
 // within a cell, the agents left out last in index order), whatever the number of threads; the positions follow
-// the order, and the padding after them is zeros.
+// the order, each agent's slot is given back by slot_of, and the padding after the positions is zeros.
 #include "neighbour_grid.h"
 
 #include <throng/core/parallel.h>
@@ -63,6 +63,11 @@ TEST_CASE("the neighbour grid sorts agents by cell as a serial stable counting s
         CHECK(grid.cell_start(grid.cell_count()) == count);
         expected.insert(expected.end(), left_out.begin(), left_out.end());
         CHECK(grid.order() == expected);
+        // slot_of is order's inverse: every agent's slot, the left-out ones' included.
+        REQUIRE(grid.slot_of().size() == n);
+        std::size_t not_inverse = 0;
+        for (std::size_t slot = 0; slot < n; ++slot) not_inverse += grid.slot_of()[expected[slot]] != slot;
+        CHECK(not_inverse == 0);
         REQUIRE(grid.sorted_x().size() == count + NeighbourGrid::padding);
         REQUIRE(grid.sorted_y().size() == count + NeighbourGrid::padding);
         std::size_t misplaced = 0;

@@ -87,6 +87,7 @@ void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double
   for (std::size_t part = 0; part < parts; ++part) outside_[part + 1] += outside_[part];
 
   order_.resize(n);
+  slot_of_.resize(n);
   // The agents left out have no position here. The padding is zeros: a search masks what it reads there, and a
   // masked lane's term is 0 × a finite offset (NaN would make it NaN).
   sorted_x_.resize(count + padding);
@@ -99,10 +100,12 @@ void NeighbourGrid::build(const std::vector<double>& x, const std::vector<double
       std::uint32_t outside = outside_[part];
       for (std::size_t i = part * part_size; i < part_end(part); ++i) {
         if (!in_grid[i]) {
+          slot_of_[i] = outside;
           order_[outside++] = static_cast<std::uint32_t>(i);
           continue;
         }
         const std::uint32_t slot = cursor[cell_of_[i]]++;
+        slot_of_[i] = slot;
         order_[slot] = static_cast<std::uint32_t>(i);
         sorted_x_[slot] = x[i];
         sorted_y_[slot] = y[i];

@@ -31,6 +31,8 @@ class NeighbourGrid {
 
   [[nodiscard]] std::size_t in_grid_count() const noexcept { return in_grid_; }
   [[nodiscard]] const std::vector<std::uint32_t>& order() const noexcept { return order_; }
+  /// agent → slot, the inverse of order().
+  [[nodiscard]] const std::vector<std::uint32_t>& slot_of() const noexcept { return slot_of_; }
   [[nodiscard]] const std::vector<double>& sorted_x() const noexcept { return sorted_x_; }
   [[nodiscard]] const std::vector<double>& sorted_y() const noexcept { return sorted_y_; }
 
@@ -67,6 +69,7 @@ class NeighbourGrid {
   std::vector<std::uint32_t> counts_;   // #parts by #cells: a part's agents in each cell, then its first slot there
   std::vector<std::uint32_t> outside_;  // #parts + 1: each part's first slot for its agents left out
   std::vector<std::uint32_t> order_;    // #agents, slot → agent
+  std::vector<std::uint32_t> slot_of_;  // #agents, agent → slot
   std::vector<double> sorted_x_, sorted_y_;
 };
 
