@@ -11,7 +11,9 @@
 // storage 0: shuffle + deflate (the default); 1: plain, the chunks unfiltered (`throng --compression none`).
 //
 // The crowd: N agents at 1 per m² in a square of side √N metres walking east between auxiliary lines (as
-// bench_sketch's BM_Step), 4 s of crowd time (100 steps) at 10 frames per second (41 frames).
+// bench_sketch's BM_Step), `seconds` of crowd time at 10 frames per second: 4 s (100 steps, 41 frames), where the
+// file's fixed costs (its header, the flush to disk at the end) weigh most, and 60 s (1,500 steps, 601 frames), a
+// shot's length, where the blocks written as the frames come are what remains.
 //
 // Run: build/<dir>/bench/sketch/bench_sketch_command --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -38,14 +40,14 @@ using namespace throng::sketch;
 
 namespace {
 
-Job square_job(std::size_t n) {
+Job square_job(std::size_t n, double seconds) {
   const double side = std::sqrt(static_cast<double>(n));
   const auto per_row = static_cast<std::size_t>(std::ceil(side));
   Job job;
   job.options.wide_distance_m = 1.0;
   job.options.narrow_distance_m = 1.0;
   job.options.resample_spacing_m = 1.0;
-  job.options.duration_s = 4.0;
+  job.options.duration_s = seconds;
   job.options.output_rate_hz = 10.0;
   const double length = 3 * side;  // nobody arrives during the run
   job.drawing.strokes = {scenes::straight_stroke({0, 0.5 * side}, {length, 0.5 * side}, 2, 1.3),
@@ -91,7 +93,7 @@ void BM_SketchCommand(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const auto mode = state.range(1);
   const CrowdStorage storage = state.range(2) == 0 ? CrowdStorage::compressed : CrowdStorage::plain;
-  const Job job = square_job(n);
+  const Job job = square_job(n, static_cast<double>(state.range(3)));
   const ThreadLimit limit(2);
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / ("bench_sketch_command_" + std::to_string(getpid()) + ".h5");
@@ -127,15 +129,16 @@ void BM_SketchCommand(benchmark::State& state) {
   state.counters["write_share"] = total > 0 ? writing / total : 0.0;
 }
 BENCHMARK(BM_SketchCommand)
-    ->ArgNames({"agents", "mode", "storage"})
-    ->ArgsProduct({{10000, 100000}, {0, 1, 2}, {0, 1}})
-    ->Args({10000, 3, 0})
-    ->Args({100000, 3, 0})
+    ->ArgNames({"agents", "mode", "storage", "seconds"})
+    ->ArgsProduct({{10000, 100000}, {0, 1, 2}, {0, 1}, {4}})
+    ->Args({10000, 3, 0, 4})
+    ->Args({100000, 3, 0, 4})
+    ->ArgsProduct({{10000}, {1, 3}, {0, 1}, {60}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_SketchCommand)
-    ->ArgNames({"agents", "mode", "storage"})
-    ->ArgsProduct({{1000000}, {0, 1}, {0, 1}})
+    ->ArgNames({"agents", "mode", "storage", "seconds"})
+    ->ArgsProduct({{1000000}, {0, 1}, {0, 1}, {4}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
