@@ -396,7 +396,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   // Agents go by index, not by grid slot: a task's writes to the next state are then one run of each array, where
   // in slot order (the grid's, which follows the agents' places, not their indices) both cores wrote into the same
   // cache lines wherever indices and places disagree (bench/sketch BM_LargeCrowd, 2,000 agents entering over time,
-  // on 2 threads: 252-257 -> 197-198 ms, as fast as 1.42 threads' worth instead of 1.1).
+  // on 2 threads: 254-267 -> 193-201 ms, 1.4 times one thread's speed instead of 1.1; the same bits).
   // They go in blocks of 64 through four passes: the forces (neighbour and obstacle searches, branchy),
   // the moves, the facings, then the targets. A move and a facing are each a chain of square roots and divisions
   // per agent: in short loops of their own the processor overlaps several agents' chains, where in one loop with
