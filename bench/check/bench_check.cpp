@@ -3,7 +3,7 @@
 // (10 frames per second, 1 m apart, 1.2 m/s along a gentle arc), 2 threads; `heap_mb`: the most heap the call
 // held beyond the crowd. Before 6 December 2026 (a sort per percentile set, an agent and a time kept with every
 // sample, merged samples grown by appends, no y test in the contact sweep): 1,000 agents 214 ms, 10,000 agents
-// 3.99 s and 1.96 GB; now 68 ms, 1.10 s and 0.62 GB (docs/commands/check-motion.md).
+// 3.99 s and 1.96 GB; now 63-68 ms, 1.10-1.13 s and 0.44 GB (docs/commands/check-motion.md).
 //
 // Run: build/<dir>/bench/check/bench_check --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include "../../tests/graph/synthetic_crowd.h"

@@ -49,50 +49,32 @@ Statistics measure(const CrowdMotion& crowd, const std::vector<Obstacle>& obstac
     }
   });
   s.reference_unmatched = static_cast<std::size_t>(std::count(unmatched.begin(), unmatched.end(), 1));
-  detail::AgentKinematics all;
-  detail::Samples moved;
-  {  // each merged array allocated once (growing them by appends faulted in about twice their size in fresh pages)
-    std::size_t speed = 0, acceleration = 0, tangential = 0, normal = 0, turning = 0, facings = 0, displaced = 0;
-    for (std::size_t a = 0; a < N; ++a) {
-      speed += kinematics[a].speed.values.size();
-      acceleration += kinematics[a].acceleration.values.size();
-      tangential += kinematics[a].tangential.values.size();
-      normal += kinematics[a].normal.values.size();
-      turning += kinematics[a].turning.values.size();
-      facings += kinematics[a].facing.values.size();
-      displaced += displacement[a].values.size();
-    }
-    all.speed.reserve(speed);
-    all.acceleration.reserve(acceleration);
-    all.tangential.reserve(tangential);
-    all.normal.reserve(normal);
-    all.turning.reserve(turning);
-    all.facing.reserve(facings);
-    moved.reserve(displaced);
-  }
   s.agent_maxima.resize(N);
   auto largest = [](const detail::Samples& x) { return x.values.empty() ? 0.0 : x.max; };
   for (std::size_t a = 0; a < N; ++a) {
     const detail::AgentKinematics& k = kinematics[a];
-    all.speed.append(k.speed);
-    all.acceleration.append(k.acceleration);
-    all.tangential.append(k.tangential);
-    all.normal.append(k.normal);
-    all.turning.append(k.turning);
-    all.facing.append(k.facing);
-    moved.append(displacement[a]);
     s.agent_maxima[a] = {crowd.ids[a],        largest(k.speed),   largest(k.acceleration), largest(k.tangential),
                          largest(k.normal),   largest(k.turning), largest(k.facing),       largest(displacement[a])};
   }
-  kinematics = {};  // the per-agent samples, merged: freed before the selections
-  displacement = {};
-  s.speed = detail::distribution(std::move(all.speed), crowd.ids);
-  s.acceleration = detail::distribution(std::move(all.acceleration), crowd.ids);
-  s.tangential_acceleration = detail::distribution(std::move(all.tangential), crowd.ids);
-  s.normal_acceleration = detail::distribution(std::move(all.normal), crowd.ids);
-  s.turning_rate = detail::distribution(std::move(all.turning), crowd.ids);
-  s.facing_rate = detail::distribution(std::move(all.facing), crowd.ids);
-  s.displacement = detail::distribution(std::move(moved), crowd.ids);
+  // One measure of every agent, merged in agent order into an array allocated once (grown by appends it faulted in
+  // about twice its size in fresh pages), then its distribution; one merged measure is held at a time.
+  auto distribution_of = [&](auto&& of_agent) {
+    std::size_t count = 0;
+    for (std::size_t a = 0; a < N; ++a) count += of_agent(a).values.size();
+    detail::Samples all;
+    all.reserve(count);
+    for (std::size_t a = 0; a < N; ++a) all.append(of_agent(a));
+    return detail::distribution(std::move(all), crowd.ids);
+  };
+  s.speed = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].speed; });
+  s.acceleration = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].acceleration; });
+  s.tangential_acceleration =
+      distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].tangential; });
+  s.normal_acceleration =
+      distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].normal; });
+  s.turning_rate = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].turning; });
+  s.facing_rate = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].facing; });
+  s.displacement = distribution_of([&](std::size_t a) -> const detail::Samples& { return displacement[a]; });
   s.contacts = detail::find_contacts(crowd, obstacles, settings);
   return s;
 }

@@ -21,6 +21,10 @@ Eigen::Vector2d coincident_direction(std::uint32_t self, std::uint32_t other) {
   return self < other ? d : Eigen::Vector2d(-d);
 }
 
+// The neighbour loop for this processor, chosen once at start rather than asked for every agent of every step.
+using NeighbourLoop = NeighbourSum (*)(const NeighbourQuery&) noexcept;
+const NeighbourLoop neighbour_loop = has_avx2() ? neighbour_sum_avx2 : neighbour_sum_sse2;
+
 }  // namespace
 
 Eigen::Vector2d agent_repulsion(const NeighbourGrid& grid, std::size_t slot, const Eigen::Vector2d& p, double r) {
@@ -40,7 +44,7 @@ Eigen::Vector2d agent_repulsion(const NeighbourGrid& grid, std::size_t slot, con
     query.from[query.ranges] = grid.cell_start(row * nx + c0);
     query.to[query.ranges] = grid.cell_start(row * nx + c1 + 1);
   }
-  const NeighbourSum sum = has_avx2() ? neighbour_sum_avx2(query) : neighbour_sum_sse2(query);
+  const NeighbourSum sum = neighbour_loop(query);
   double ax = sum.x, ay = sum.y;
   // Candidates at p: the agent itself (its own cell is searched, and p is its place there) and any other.
   if (sum.at_p > 1) {

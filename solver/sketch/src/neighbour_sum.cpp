@@ -88,6 +88,7 @@ __attribute__((target("avx2,popcnt"))) NeighbourSum neighbour_sum_avx2(const Nei
 }
 
 bool has_avx2() noexcept {
+  __builtin_cpu_init();  // a static initialiser calls this (agent_repulsion.cpp), maybe before libgcc's own has run
   static const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
   return avx2;
 }
