@@ -18,7 +18,7 @@ find_package(MPI REQUIRED COMPONENTS C)
 # HDF5: the OpenMPI build, the same library PETSc links, so one process never loads two HDF5 libraries.
 pkg_check_modules(HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
 # ISA-L (libisal-dev): io deflates a dataset's chunks in parallel with its igzip, 3x libdeflate's and 8x zlib's
-# speed at level 1, into zlib streams any HDF5 reader inflates (io/src/filtered_chunks.h).
+# speed at level 1, into zlib streams any HDF5 reader inflates (io/src/chunk_deflate.h, filtered_chunks.h).
 pkg_check_modules(LIBISAL REQUIRED IMPORTED_TARGET libisal)
 
 # SuiteSparse (CHOLMOD) and METIS ship no CMake config on Debian 12.

@@ -197,10 +197,7 @@ struct CrowdStreamWriter::Impl {
       const unsigned char* rows = s.buffer[job.buffer].data();
       if (shape.storage == CrowdStorage::compressed) {
         h5::detail::ChunkedLayout layout{job.rows, s.row_bytes, s.chunk_rows, s.element_size, h5::detail::deflate_level, s.width};
-        h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(rows), layout, where,
-                                  [&](std::uint64_t first_row, std::uint64_t component, const std::vector<unsigned char>& bytes) {
-                                    write_chunk(first_row, component, bytes.data(), bytes.size());
-                                  });
+        h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(rows), layout, where, write_chunk);
       } else {
         write_plain_chunks(rows, job.rows, s.row_bytes, s.chunk_rows, write_chunk);
       }

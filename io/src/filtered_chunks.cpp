@@ -1,13 +1,12 @@
 #include "filtered_chunks.h"
 
+#include "chunk_deflate.h"
+
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
 
-#include <isa-l/igzip_lib.h>
+#include <tbb/parallel_pipeline.h>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#endif
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -24,9 +23,10 @@
 namespace throng::h5::detail {
 namespace {
 
-// Chunks compressed before they are written: enough tasks for every thread, a bounded buffer (≈ 32 × 256 KiB
-// in and out).
-constexpr std::uint64_t batch_chunks = 32;
+// Chunks are compressed in groups of about this many (a task of about 0.15 ms at 10,000 agents), at most
+// groups_in_flight groups at a time: a bounded buffer (≈ 4 × 16 × 256 KiB in and out).
+constexpr std::uint64_t group_chunks = 4;
+constexpr std::size_t groups_in_flight = 16;
 
 // The shuffle filter (H5Z_filter_shuffle) of n elements taken `stride` bytes apart from `in`: byte j of element i
 // goes to position j × n + i.
@@ -36,22 +36,43 @@ void shuffle_bytes(const unsigned char* in, std::size_t n, std::size_t element_s
   }
 }
 
-// The same for contiguous elements of ElementSize (4 or 8) bytes, 16 elements at a time in SSE2 registers (GCC
-// left the byte loop scalar: 8 % of `throng sketch` at 10,000 agents). The 16 elements fill ElementSize registers;
-// byte j of element i sits in register i3 i2 i1 at lane i0 j2 j1 j0 (bits, for 8-byte elements). Each
-// round interleaves register k with register k + ElementSize/2 (unpacklo into 2k, unpackhi into 2k + 1): every lane
-// index moves up a bit, taking the pair's distinguishing register bit as its lowest, and its highest becomes the
-// register bit that tells lo from hi. After four rounds a register's lanes are i3 i2 i1 i0 and register j holds
-// byte j of the 16 elements in order: 16 bytes of plane j.
+#if defined(__SSE2__)
+// Sixteen bytes of elements 2k and 2k + 1 (8-byte elements) or 4k to 4k + 3 (4-byte ones) of the 16 at `in`,
+// elements `stride` bytes apart: register k of shuffle_elements_of's transpose, as if the elements were contiguous.
 template <std::size_t ElementSize>
-void shuffle_elements_of(const unsigned char* in, std::size_t n, unsigned char* out) {
+__m128i gather_register(const unsigned char* in, std::size_t stride, std::size_t k) {
+  if constexpr (ElementSize == 8) {
+    const auto* e = in + 2 * k * stride;
+    return _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(e)),
+                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(e + stride)));
+  } else {
+    const auto* e = in + 4 * k * stride;
+    std::int32_t v[4];
+    for (std::size_t m = 0; m < 4; ++m) std::memcpy(&v[m], e + m * stride, 4);
+    return _mm_setr_epi32(v[0], v[1], v[2], v[3]);
+  }
+}
+#endif
+
+// The same for elements of ElementSize (4 or 8) bytes, 16 elements at a time in SSE2 registers (GCC left the byte
+// loop scalar: 8 % of `throng sketch` at 10,000 agents). The 16 elements fill ElementSize registers (contiguous
+// ones loaded 16 bytes at a time; one component of rows, `stride` bytes apart, an element at a time, so that it is
+// not first copied out of its rows: that copy was 60 % of this step); byte j of element i sits in register
+// i3 i2 i1 at lane i0 j2 j1 j0 (bits, for 8-byte elements). Each round interleaves register k with register
+// k + ElementSize/2 (unpacklo into 2k, unpackhi into 2k + 1): every lane index moves up a bit, taking the pair's
+// distinguishing register bit as its lowest, and its highest becomes the register bit that tells lo from hi. After
+// four rounds a register's lanes are i3 i2 i1 i0 and register j holds byte j of the 16 elements in order: 16 bytes
+// of plane j.
+template <std::size_t ElementSize>
+void shuffle_elements_of(const unsigned char* in, std::size_t n, std::size_t stride, unsigned char* out) {
   static_assert(ElementSize == 4 || ElementSize == 8);
   std::size_t i = 0;
 #if defined(__SSE2__)
   for (; i + 16 <= n; i += 16) {
     __m128i r[ElementSize], t[ElementSize];
     for (std::size_t k = 0; k < ElementSize; ++k) {
-      r[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + i * ElementSize + 16 * k));
+      r[k] = stride == ElementSize ? _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + i * ElementSize + 16 * k))
+                                   : gather_register<ElementSize>(in + i * stride, stride, k);
     }
     for (int round = 0; round < 4; ++round) {
       for (std::size_t k = 0; k < ElementSize / 2; ++k) {
@@ -64,152 +85,142 @@ void shuffle_elements_of(const unsigned char* in, std::size_t n, unsigned char* 
   }
 #endif
   for (; i < n; ++i) {
-    for (std::size_t j = 0; j < ElementSize; ++j) out[j * n + i] = in[i * ElementSize + j];
+    for (std::size_t j = 0; j < ElementSize; ++j) out[j * n + i] = in[i * stride + j];
   }
 }
 
-// A component (stride > element size) is first gathered into `scratch` (n elements) by whole elements, then
-// transposed as contiguous elements.
-template <std::size_t ElementSize>
-void shuffle_strided(const unsigned char* in, std::size_t n, std::size_t stride, unsigned char* scratch, unsigned char* out) {
-  if (stride != ElementSize) {
-    for (std::size_t i = 0; i < n; ++i) std::memcpy(scratch + i * ElementSize, in + i * stride, ElementSize);
-    in = scratch;
-  }
-  shuffle_elements_of<ElementSize>(in, n, out);
-}
-
-// `scratch`: room for n elements, used when stride > element_size.
-void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride, unsigned char* scratch,
-             unsigned char* out) {
+void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride, unsigned char* out) {
   switch (element_size) {
-    case 8: return shuffle_strided<8>(in, n, stride, scratch, out);
-    case 4: return shuffle_strided<4>(in, n, stride, scratch, out);
+    case 8: return shuffle_elements_of<8>(in, n, stride, out);
+    case 4: return shuffle_elements_of<4>(in, n, stride, out);
     default: return shuffle_bytes(in, n, element_size, stride, out);  // sizes throng does not write
   }
 }
 
-// ISA-L 2.30's AVX2 and AVX-512 deflate code returns with the upper halves of the vector registers dirty (no
-// vzeroupper): every SSE instruction after it, on that thread, then pays for merging them, and throng's code (built
-// for baseline x86-64, SSE2) ran 3.6x slower on that thread (a float loop 11.7 -> 42.7 ms; the sketch's simulation
-// 2x). One vzeroupper after each call clears them; it leaves the low 128 bits that SSE code uses untouched. In a
-// function of its own built for AVX, so that the compiler knows what the instruction clobbers.
-#if defined(__x86_64__)
-__attribute__((target("avx"))) void zero_upper_halves() { _mm256_zeroupper(); }
-#endif
+// A thread's deflater (ISA-L's level buffer, 0.3 MB) and shuffled chunk, grown as needed and kept from group to
+// group: made per group, they were page-faulted in again and again.
+struct ThreadBuffers {
+  std::unique_ptr<ChunkDeflater> deflater;
+  int level = 0;
+  std::vector<unsigned char> shuffled;
+};
 
-void clear_upper_vector_state() {
-#if defined(__x86_64__)
-  static const bool has_avx = __builtin_cpu_supports("avx");
-  if (has_avx) zero_upper_halves();
-#endif
-}
-
-// ISA-L's levels are 0-3 (0 its fastest, not stored blocks); a dataset's deflate level 1-9 (zlib's scale, kept in
-// the file's filter pipeline) maps to the nearest: 1 -> 1, 2-5 -> 2, 6-9 -> 3.
-int isal_level(int zlib_level) {
-  if (zlib_level <= 1) return 1;
-  return zlib_level <= 5 ? 2 : 3;
-}
-
-std::size_t level_buffer_bytes(int zlib_level) {
-  switch (isal_level(zlib_level)) {
-    case 1: return ISAL_DEF_LVL1_DEFAULT;
-    case 2: return ISAL_DEF_LVL2_DEFAULT;
-    default: return ISAL_DEF_LVL3_DEFAULT;
+ThreadBuffers& thread_buffers(int level, std::size_t shuffled_bytes) {
+  thread_local ThreadBuffers buffers;
+  if (!buffers.deflater || buffers.level != level) {
+    buffers.deflater = std::make_unique<ChunkDeflater>(level);
+    buffers.level = level;
   }
-}
-
-// Room for any chunk's stream: ISA-L falls back to stored blocks (5 bytes of header per 65,535 bytes) when the
-// data does not compress, after the zlib header (2 bytes) and before the Adler-32 (4); its largest block header,
-// once more, as margin.
-std::size_t zlib_stream_bound(std::size_t bytes) {
-  return bytes + 5 * (bytes / 65535 + 1) + 6 + ISAL_DEF_MAX_HDR_SIZE;
+  if (buffers.shuffled.size() < shuffled_bytes) buffers.shuffled.resize(shuffled_bytes);
+  return buffers;
 }
 
 }  // namespace
 
 void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,
                    const std::function<void(std::uint64_t first_row, std::uint64_t component,
-                                            const std::vector<unsigned char>& bytes)>& write) {
+                                            const unsigned char* bytes, std::size_t size)>& write) {
   const std::uint64_t C = layout.components;
   if (layout.element_size == 0 || C == 0 || layout.row_bytes % (C * layout.element_size) != 0 || layout.chunk_rows == 0) {
     throw std::logic_error("filter_chunks: rows of whole elements and chunks of at least one row expected");
   }
   const std::uint64_t rows_bytes = layout.chunk_rows * layout.row_bytes;  // a chunk's rows, every component
   const std::uint64_t chunk_bytes = rows_bytes / C;
-  if (zlib_stream_bound(rows_bytes) > std::numeric_limits<std::uint32_t>::max()) {  // libhdf5's limit is 4 GiB too
+  if (ChunkDeflater::bound(rows_bytes, layout.element_size) > std::numeric_limits<std::uint32_t>::max()) {  // libhdf5's limit is 4 GiB too
     // (A chunk's rows, every component: a bound C times stricter than the chunk needs, kept simple.)
     throw std::logic_error("filter_chunks: a chunk's rows of " + std::to_string(rows_bytes) + " bytes are beyond ISA-L's 32-bit sizes");
   }
   // Chunk k: rows from (k / C) × chunk_rows, component k % C.
   const std::uint64_t chunks = (layout.rows + layout.chunk_rows - 1) / layout.chunk_rows * C;
   const bool transposed = layout.element_size > 1 || C > 1;  // shuffled, or one component taken out of the rows
-  for (std::uint64_t first = 0; first < chunks; first += batch_chunks) {
-    const std::uint64_t count = std::min(batch_chunks, chunks - first);
-    std::vector<std::vector<unsigned char>> packed(count);
-    std::vector<int> failed(count, 0);  // ISA-L's status of each chunk that failed
-    parallel_for(count, 1, [&](std::size_t begin, std::size_t end) {
-      // One level buffer per task (ISA-L's hash tables and token space, about 0.3 MB; buffers kept per thread
-      // instead measured no faster).
-      // Left uninitialised (ISA-L's level 1 resets what it reads of the level buffer; the others are written before
-      // they are read): zeroing them cost about 1 % of `throng sketch` at 10,000 agents. Levels 2-3 gave the same
-      // streams from garbage too, but valgrind saw their assembly branch on it: zeroed there.
-      const std::size_t level_bytes = level_buffer_bytes(layout.level), out_bytes = zlib_stream_bound(chunk_bytes);
-      const auto level_buffer = std::make_unique_for_overwrite<std::uint8_t[]>(level_bytes);
-      if (isal_level(layout.level) > 1) std::memset(level_buffer.get(), 0, level_bytes);
-      const auto shuffled = std::make_unique_for_overwrite<unsigned char[]>(transposed ? chunk_bytes : 0);
-      const auto gathered = std::make_unique_for_overwrite<unsigned char[]>(C > 1 ? chunk_bytes : 0);
-      const auto out = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);
-      std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
-      std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::uint64_t row0 = (first + k) / C * layout.chunk_rows, component = (first + k) % C;
-        const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
-        const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
-        const unsigned char* chunk = source;
-        if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes (libhdf5's fill)
-          if (padded_row0 != row0) {
-            padded.assign(rows_bytes, 0);
-            std::memcpy(padded.data(), source, rows * layout.row_bytes);
-            padded_row0 = row0;
-          }
-          chunk = padded.data();
+  const std::uint64_t row_elements = layout.row_bytes / (C * layout.element_size);  // one component's, in a row
+  const std::size_t out_bytes = ChunkDeflater::bound(chunk_bytes, layout.element_size);
+  // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k], or ISA-L's status in
+  // failed[k].
+  struct Group {
+    std::uint64_t first = 0, count = 0;
+    std::vector<std::unique_ptr<unsigned char[]>> packed;  // each out_bytes long, size[k] of them the stream
+    std::vector<std::size_t> size;
+    std::vector<int> failed;
+  };
+  const auto compress = [&](Group& group) {
+    ThreadBuffers& buffers = thread_buffers(layout.level, transposed ? chunk_bytes : 0);
+    group.packed.resize(group.count);
+    group.size.assign(group.count, 0);
+    group.failed.assign(group.count, 0);
+    std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
+    std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
+    for (std::uint64_t k = 0; k < group.count; ++k) {
+      const std::uint64_t row0 = (group.first + k) / C * layout.chunk_rows, component = (group.first + k) % C;
+      const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
+      const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
+      const unsigned char* chunk = source;
+      if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes (libhdf5's fill)
+        if (padded_row0 != row0) {
+          padded.assign(rows_bytes, 0);
+          std::memcpy(padded.data(), source, rows * layout.row_bytes);
+          padded_row0 = row0;
         }
-        if (transposed) {
-          shuffle(chunk + component * layout.element_size, chunk_bytes / layout.element_size, layout.element_size,
-                  C * layout.element_size, gathered.get(), shuffled.get());
-          chunk = shuffled.get();
-        }
-        // Value-initialised first: 2.30's init leaves hist_bits (the match window) unset, and garbage there would
-        // make a chunk's bytes differ from run to run (0: the default, 32 KiB).
-        isal_zstream stream{};
-        isal_deflate_stateless_init(&stream);
-        stream.hist_bits = 0;
-        stream.level = static_cast<std::uint32_t>(isal_level(layout.level));
-        stream.level_buf = level_buffer.get();
-        stream.level_buf_size = static_cast<std::uint32_t>(level_bytes);
-        stream.gzip_flag = IGZIP_ZLIB;  // zlib header and Adler-32 trailer: what HDF5's deflate filter inflates
-        stream.end_of_stream = 1;
-        stream.flush = NO_FLUSH;
-        stream.next_in = const_cast<std::uint8_t*>(chunk);
-        stream.avail_in = static_cast<std::uint32_t>(chunk_bytes);
-        stream.next_out = out.get();
-        stream.avail_out = static_cast<std::uint32_t>(out_bytes);
-        const int status = isal_deflate_stateless(&stream);
-        clear_upper_vector_state();
-        if (status != COMP_OK) failed[k] = status;  // not within the bound: a failure, not an empty chunk
-        else packed[k].assign(out.get(), out.get() + stream.total_out);
+        chunk = padded.data();
       }
-    });
-    for (std::uint64_t k = 0; k < count; ++k) {
-      if (failed[k] != 0) {
-        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(first + k) +
-                      " (status " + std::to_string(failed[k]) + ")");
+      if (transposed) {
+        shuffle(chunk + component * layout.element_size, chunk_bytes / layout.element_size, layout.element_size,
+                C * layout.element_size, buffers.shuffled.data());
+        chunk = buffers.shuffled.data();
       }
-      write((first + k) / C * layout.chunk_rows, (first + k) % C, packed[k]);
+      // The shuffled chunk's byte planes (one of a chunk that is not shuffled); an element's value one row
+      // earlier is row_elements bytes back in its plane.
+      // Deflated straight into the group's buffer (uninitialised: written before it is read).
+      int status = 0;
+      group.packed[k] = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);
+      const std::size_t made = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size,
+                                                         layout.chunk_rows > 1 ? row_elements : 0, group.packed[k].get(),
+                                                         out_bytes, &status);
+      if (made == 0) group.failed[k] = status;  // a failure, not an empty chunk
+      group.size[k] = made;
     }
-  }
+  };
+  const auto hand_over = [&](const Group& group) {
+    for (std::uint64_t k = 0; k < group.count; ++k) {
+      if (group.failed[k] != 0) {
+        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(group.first + k) +
+                      " (status " + std::to_string(group.failed[k]) + ")");
+      }
+      write((group.first + k) / C * layout.chunk_rows, (group.first + k) % C, group.packed[k].get(), group.size[k]);
+    }
+  };
+
+  // A pipeline: groups are compressed on every thread and written one after the other in order as they come,
+  // while the next ones compress. Writing is one thread's work at a time (libhdf5 is never called concurrently);
+  // compressed in batches and then written, the other threads waited while a batch was written and the writer
+  // waited for a batch's slowest group (at 10,000 agents a block is only one or two batches of 32).
+  // Whole rows of chunks (every component of the same rows) in a group, so that one thread reads those rows out of
+  // memory once and takes each component from its cache.
+  const std::uint64_t group_size = C * std::max<std::uint64_t>(1, group_chunks / C);
+  std::uint64_t next = 0;
+  tbb::parallel_pipeline(
+      groups_in_flight,
+      tbb::make_filter<void, std::shared_ptr<Group>>(
+          tbb::filter_mode::serial_in_order,
+          [&](tbb::flow_control& control) -> std::shared_ptr<Group> {
+            if (next >= chunks) {
+              control.stop();
+              return nullptr;
+            }
+            auto group = std::make_shared<Group>();
+            group->first = next;
+            group->count = std::min(group_size, chunks - next);
+            next += group->count;
+            return group;
+          }) &
+          tbb::make_filter<std::shared_ptr<Group>, std::shared_ptr<Group>>(
+              tbb::filter_mode::parallel,
+              [&](std::shared_ptr<Group> group) {
+                compress(*group);
+                return group;
+              }) &
+          tbb::make_filter<std::shared_ptr<Group>, void>(tbb::filter_mode::serial_in_order,
+                                                          [&](const std::shared_ptr<Group>& group) { hand_over(*group); }));
 }
 
 }  // namespace throng::h5::detail

@@ -2,11 +2,10 @@
 //
 // libhdf5 runs a dataset's filters on one thread, chunk after chunk: zlib was 60 % of `throng sketch` at 6,000
 // agents. Here each chunk goes through the same pipeline libhdf5 would run (the shuffle filter's byte transpose,
-// then deflate at the dataset's level into a zlib stream) on its own task (throng::parallel_for), and is handed in
-// chunk order to the caller, who writes it as it is (H5Dwrite_chunk). Deflate is ISA-L's (Intel's igzip), not
-// zlib's: on shuffled float64 frames of a 10,000-agent sketch its level 1 ran at 420-480 MB/s a core, 3.1-3.5x
-// libdeflate's level 1 (used before, itself 2-2.6x zlib's) for 1-5 % more bytes; its streams are ordinary zlib
-// streams, so every HDF5 reader inflates them with zlib.
+// then deflate at the dataset's level into a zlib stream: chunk_deflate.h, ISA-L's igzip with the byte planes that
+// are noise stored) on the threads of a pipeline, and is handed in chunk order to the caller, who writes it as it
+// is (H5Dwrite_chunk) while the next chunks compress. ISA-L's streams are ordinary zlib streams, so every HDF5
+// reader inflates them with zlib.
 // Every chunk's bytes depend on its rows alone, so the file is the same whatever the thread count, and any HDF5
 // reader decodes it as one written by H5Dwrite.
 #pragma once
@@ -36,11 +35,12 @@ struct ChunkedLayout {
 
 /// Filters `data` (rows × row_bytes bytes, already in the dataset's file type) chunk by chunk as a dataset of that
 /// layout stores it, and calls write(first row of the chunk, its component (0 without components), its filtered
-/// bytes) for every chunk in order: by rows, then by component.
+/// bytes and their count) for every chunk in order: by rows, then by component, one call at a time (from any of
+/// the threads: libhdf5 may be called there, never concurrently).
 /// IoError naming `where` when ISA-L fails on a chunk; std::logic_error for a row that is not whole elements (of
 /// every component) or a chunk beyond 4 GiB.
 void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,
                    const std::function<void(std::uint64_t first_row, std::uint64_t component,
-                                            const std::vector<unsigned char>& bytes)>& write);
+                                            const unsigned char* bytes, std::size_t size)>& write);
 
 }  // namespace throng::h5::detail

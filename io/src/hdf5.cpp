@@ -180,11 +180,11 @@ void write_numeric(const Group& g, const std::string& name, const std::vector<T>
   if (chunked.chunk_rows > 0 && H5Tequal(memory_type, file_type) > 0) {
     std::vector<hsize_t> offset(shape.size(), 0);
     detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data()), chunked, g.where(name),
-                          [&](std::uint64_t first_row, std::uint64_t component, const std::vector<unsigned char>& bytes) {
+                          [&](std::uint64_t first_row, std::uint64_t component, const unsigned char* bytes, std::size_t size) {
                             offset[0] = first_row;
                             if (chunked.components > 1) offset.back() = component;
                             // Filter mask 0: every filter of the dataset (shuffle, then deflate) was applied.
-                            check(H5Dwrite_chunk(set.id(), H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()),
+                            check(H5Dwrite_chunk(set.id(), H5P_DEFAULT, 0, offset.data(), size, bytes),
                                   "cannot write " + g.where(name));
                           });
     return;
