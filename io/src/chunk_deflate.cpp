@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace throng::h5::detail {
 namespace {
@@ -188,6 +191,11 @@ std::size_t ChunkDeflater::run_isal(const unsigned char* in, std::size_t bytes, 
 std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
                                    std::size_t row_elements, unsigned char* out, std::size_t out_bytes, int* status) {
   *status = 0;
+  if (bytes > std::numeric_limits<std::uint32_t>::max() || out_bytes < bound(bytes, planes)) {
+    throw std::logic_error("ChunkDeflater: a chunk of " + std::to_string(bytes) + " bytes needs " +
+                           std::to_string(bound(bytes, planes)) + " bytes of room within ISA-L's 32-bit sizes, not " +
+                           std::to_string(out_bytes));
+  }
   if (all_zero(chunk, bytes)) {
     if (zero_bytes_ != bytes || zero_stream_.empty()) {
       const std::size_t made = run_isal(chunk, bytes, true, true, out, out_bytes, status);

@@ -44,7 +44,8 @@ class ChunkDeflater {
 
   /// Writes the zlib stream of `bytes` bytes at `chunk`, taken as `planes` byte planes of bytes / planes each
   /// (1: one plane, deflated whole) to `out` (room for bound(bytes, planes)); `row_elements` as looks_like_noise's.
-  /// Returns the stream's length, or 0 with ISA-L's status in *status when ISA-L fails.
+  /// Returns the stream's length, or 0 with ISA-L's status in *status when ISA-L fails; std::logic_error for a
+  /// chunk beyond 4 GiB or `out_bytes` under bound(bytes, planes).
   std::size_t deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements,
                       unsigned char* out, std::size_t out_bytes, int* status);
 

@@ -12,6 +12,9 @@
 #endif
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -105,14 +108,27 @@ struct ThreadBuffers {
   std::vector<unsigned char> shuffled;
 };
 
-ThreadBuffers& thread_buffers(int level, std::size_t shuffled_bytes) {
+// Shuffled chunks up to this size are kept per thread (a 10,000-agent frame's component is 80 KB); larger ones
+// (a frame of 1,000,000 agents: 8 MB) are made per group, so that no thread keeps them for the process's life.
+constexpr std::size_t kept_shuffled_bytes = 4 * 1024 * 1024;
+
+ThreadBuffers& thread_buffers(int level) {
   thread_local ThreadBuffers buffers;
   if (!buffers.deflater || buffers.level != level) {
     buffers.deflater = std::make_unique<ChunkDeflater>(level);
     buffers.level = level;
   }
-  if (buffers.shuffled.size() < shuffled_bytes) buffers.shuffled.resize(shuffled_bytes);
   return buffers;
+}
+
+// Room for `bytes` shuffled bytes: the thread's kept buffer, or `own` made for the caller.
+unsigned char* shuffled_room(ThreadBuffers& buffers, std::size_t bytes, std::unique_ptr<unsigned char[]>& own) {
+  if (bytes > kept_shuffled_bytes) {
+    own = std::make_unique_for_overwrite<unsigned char[]>(bytes);
+    return own.get();
+  }
+  if (buffers.shuffled.size() < bytes) buffers.shuffled.resize(bytes);
+  return buffers.shuffled.data();
 }
 
 }  // namespace
@@ -144,7 +160,9 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     std::vector<int> failed;
   };
   const auto compress = [&](Group& group) {
-    ThreadBuffers& buffers = thread_buffers(layout.level, transposed ? chunk_bytes : 0);
+    ThreadBuffers& buffers = thread_buffers(layout.level);
+    std::unique_ptr<unsigned char[]> own;
+    unsigned char* const shuffled = transposed ? shuffled_room(buffers, chunk_bytes, own) : nullptr;
     group.packed.resize(group.count);
     group.size.assign(group.count, 0);
     group.failed.assign(group.count, 0);
@@ -165,8 +183,8 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       }
       if (transposed) {
         shuffle(chunk + component * layout.element_size, chunk_bytes / layout.element_size, layout.element_size,
-                C * layout.element_size, buffers.shuffled.data());
-        chunk = buffers.shuffled.data();
+                C * layout.element_size, shuffled);
+        chunk = shuffled;
       }
       // The shuffled chunk's byte planes (one of a chunk that is not shuffled); an element's value one row
       // earlier is row_elements bytes back in its plane.
@@ -197,30 +215,61 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   // Whole rows of chunks (every component of the same rows) in a group, so that one thread reads those rows out of
   // memory once and takes each component from its cache.
   const std::uint64_t group_size = C * std::max<std::uint64_t>(1, group_chunks / C);
+  // No exception leaves a stage (oneTBB frees an item only after its stage returns: one thrown through it leaked the
+  // group): the first failure is kept, the input stops, the groups still in flight are dropped unwritten, and the
+  // failure is rethrown once the pipeline has drained.
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  std::atomic<bool> failed{false};
+  const auto keep = [&](std::exception_ptr e) {
+    std::lock_guard lock(failure_mutex);
+    if (!failure) failure = std::move(e);
+    failed = true;
+  };
   std::uint64_t next = 0;
   tbb::parallel_pipeline(
       groups_in_flight,
       tbb::make_filter<void, std::shared_ptr<Group>>(
           tbb::filter_mode::serial_in_order,
           [&](tbb::flow_control& control) -> std::shared_ptr<Group> {
-            if (next >= chunks) {
+            if (next >= chunks || failed) {
               control.stop();
               return nullptr;
             }
-            auto group = std::make_shared<Group>();
-            group->first = next;
-            group->count = std::min(group_size, chunks - next);
-            next += group->count;
-            return group;
+            try {
+              auto group = std::make_shared<Group>();
+              group->first = next;
+              group->count = std::min(group_size, chunks - next);
+              next += group->count;
+              return group;
+            } catch (...) {
+              keep(std::current_exception());
+              control.stop();
+              return nullptr;
+            }
           }) &
           tbb::make_filter<std::shared_ptr<Group>, std::shared_ptr<Group>>(
               tbb::filter_mode::parallel,
               [&](std::shared_ptr<Group> group) {
-                compress(*group);
+                if (!failed) {
+                  try {
+                    compress(*group);
+                  } catch (...) {
+                    keep(std::current_exception());
+                  }
+                }
                 return group;
               }) &
           tbb::make_filter<std::shared_ptr<Group>, void>(tbb::filter_mode::serial_in_order,
-                                                          [&](const std::shared_ptr<Group>& group) { hand_over(*group); }));
+                                                          [&](const std::shared_ptr<Group>& group) {
+                                                            if (failed) return;
+                                                            try {
+                                                              hand_over(*group);
+                                                            } catch (...) {
+                                                              keep(std::current_exception());
+                                                            }
+                                                          }));
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace throng::h5::detail

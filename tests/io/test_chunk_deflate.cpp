@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace throng::h5::detail;
@@ -176,4 +178,68 @@ TEST_CASE("noise longer than a stored block is split into blocks of at most 65,5
   CHECK(d.stream.size() <= ChunkDeflater::bound(chunk.size(), 8));
   CHECK(d.stream.size() == 2 + chunk.size() + 5 * 13 + 4);  // header, 13 blocks of 5-byte headers, Adler-32
   CHECK(inflate_stream(d.stream, chunk.size()) == chunk);
+}
+
+TEST_CASE("plane layouts of every kind, runs deflated between stored ones, inflate back at levels 1, 4 and 9") {
+  // Planes of n bytes, each noise (N), runs of one byte value in turn (S), zeros (Z) or 0xff (F), in orders that put
+  // a deflated run before a stored one (the byte boundary of ISA-L's FULL_FLUSH), a stored run last, and 16 planes.
+  const std::size_t n = 6'000;
+  std::mt19937_64 random(23);
+  const auto plane = [&](char kind) {
+    std::vector<unsigned char> p(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      switch (kind) {
+        case 'N': p[i] = static_cast<unsigned char>(random()); break;
+        case 'S': p[i] = static_cast<unsigned char>(i / 37); break;
+        case 'Z': p[i] = 0; break;
+        default: p[i] = 0xff; break;
+      }
+    }
+    return p;
+  };
+  for (const std::string layout : {"SNSNNSNZ", "SN", "NS", "ZNFN", "NNNNNNNN", "SSSSSSSS", "SNZFNSNNFZSNSNNN"}) {
+    std::vector<unsigned char> chunk;
+    std::size_t noise = 0;
+    for (const char kind : layout) {
+      const std::vector<unsigned char> p = plane(kind);
+      chunk.insert(chunk.end(), p.begin(), p.end());
+      noise += kind == 'N';
+    }
+    for (std::size_t j = 0; j < layout.size(); ++j) {
+      CHECK(looks_like_noise(chunk.data() + j * n, n, 0) == (layout[j] == 'N'));
+    }
+    for (const int level : {1, 4, 9}) {
+      INFO(layout << " at level " << level);
+      ChunkDeflater deflater(level);
+      const Deflated d = deflate_chunk(deflater, chunk, layout.size(), 0);
+      REQUIRE(d.status == 0);
+      CHECK(d.stream.size() <= ChunkDeflater::bound(chunk.size(), layout.size()));
+      CHECK(inflate_stream(d.stream, chunk.size()) == chunk);
+      CHECK(d.stream.size() >= noise * n);                   // the noise kept whole
+      CHECK(d.stream.size() < noise * n + 1'000 * layout.size());  // the rest shrank to little
+    }
+  }
+}
+
+TEST_CASE("a deflater used before gives a fresh one's stream, at levels 1, 4 and 9") {
+  // ISA-L's level buffer is kept from chunk to chunk (zeroed once at levels 2-3): what it held must not show.
+  const std::vector<unsigned char> a = planes_of(walk(10'000, 31)), b = planes_of(walk(10'000, 32));
+  std::vector<unsigned char> ramp(80'000);
+  for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = static_cast<unsigned char>(i / 300);
+  for (const int level : {1, 4, 9}) {
+    INFO("level " << level);
+    ChunkDeflater used(level);
+    (void)deflate_chunk(used, a, 8, 0);
+    (void)deflate_chunk(used, ramp, 1, 0);
+    ChunkDeflater fresh(level), fresh_ramp(level);
+    CHECK(deflate_chunk(used, b, 8, 0).stream == deflate_chunk(fresh, b, 8, 0).stream);
+    CHECK(deflate_chunk(used, ramp, 8, 0).stream == deflate_chunk(fresh_ramp, ramp, 8, 0).stream);
+  }
+}
+
+TEST_CASE("the deflater refuses room under its bound") {
+  ChunkDeflater deflater(1);
+  std::vector<unsigned char> chunk(10'000, 1), out(ChunkDeflater::bound(chunk.size(), 8) - 1);
+  int status = 0;
+  CHECK_THROWS_AS(deflater.deflate(chunk.data(), chunk.size(), 8, 0, out.data(), out.size(), &status), std::logic_error);
 }
