@@ -26,7 +26,7 @@ namespace throng::h5::detail {
 /// over it. Noise has bytes spread evenly (the windows' byte histogram close to uniform: its sum of squared counts
 /// within 0.1 × n²/256 of what uniform random bytes give), no runs (a byte equal to the one before in under 1 in
 /// 32), and no repeats one row earlier (`row_elements` bytes back: an agent's value in the frame before, within one
-/// chunk of several frames; 0 when the chunk has one row). Planes under 4,096 bytes are never called noise (too few
+/// chunk of several frames; none in a chunk of one row, n ≤ row_elements; 0: none looked for). Planes under 4,096 bytes are never called noise (too few
 /// samples; ISA-L is quick on them anyway). Deterministic: the same plane, the same answer. A plane with repeats
 /// at other distances that still passes (a crowd tiled from copies of one patch, agent by agent) is stored whole:
 /// a larger file, never a wrong one.

@@ -151,13 +151,11 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   const bool transposed = layout.element_size > 1 || C > 1;  // shuffled, or one component taken out of the rows
   const std::uint64_t row_elements = layout.row_bytes / (C * layout.element_size);  // one component's, in a row
   const std::size_t out_bytes = ChunkDeflater::bound(chunk_bytes, layout.element_size);
-  // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k], or ISA-L's status in
-  // failed[k].
+  // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
     std::vector<std::unique_ptr<unsigned char[]>> packed;  // each out_bytes long, size[k] of them the stream
     std::vector<std::size_t> size;
-    std::vector<int> failed;
   };
   const auto compress = [&](Group& group) {
     ThreadBuffers& buffers = thread_buffers(layout.level);
@@ -165,7 +163,6 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     unsigned char* const shuffled = transposed ? shuffled_room(buffers, chunk_bytes, own) : nullptr;
     group.packed.resize(group.count);
     group.size.assign(group.count, 0);
-    group.failed.assign(group.count, 0);
     std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
     std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
     for (std::uint64_t k = 0; k < group.count; ++k) {
@@ -186,24 +183,21 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
                 C * layout.element_size, shuffled);
         chunk = shuffled;
       }
-      // The shuffled chunk's byte planes (one of a chunk that is not shuffled); an element's value one row
-      // earlier is row_elements bytes back in its plane.
-      // Deflated straight into the group's buffer (uninitialised: written before it is read).
+      // The shuffled chunk's byte planes (one of a chunk that is not shuffled), an element's value one row earlier
+      // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
+      // before it is read).
       int status = 0;
       group.packed[k] = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);
-      const std::size_t made = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size,
-                                                         layout.chunk_rows > 1 ? row_elements : 0, group.packed[k].get(),
-                                                         out_bytes, &status);
-      if (made == 0) group.failed[k] = status;  // a failure, not an empty chunk
-      group.size[k] = made;
+      group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
+                                                group.packed[k].get(), out_bytes, &status);
+      if (group.size[k] == 0) {  // a failure, not an empty chunk
+        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(group.first + k) +
+                      " (status " + std::to_string(status) + ")");
+      }
     }
   };
   const auto hand_over = [&](const Group& group) {
     for (std::uint64_t k = 0; k < group.count; ++k) {
-      if (group.failed[k] != 0) {
-        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(group.first + k) +
-                      " (status " + std::to_string(group.failed[k]) + ")");
-      }
       write((group.first + k) / C * layout.chunk_rows, (group.first + k) % C, group.packed[k].get(), group.size[k]);
     }
   };

@@ -89,8 +89,6 @@ TEST_CASE("looks_like_noise: random bytes are noise, and constant, run-length or
   for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = plane[i % 5'000];
   CHECK_FALSE(looks_like_noise(rows.data(), rows.size(), 5'000));
   CHECK(looks_like_noise(rows.data(), rows.size(), 0));  // not told where a row starts: it looks like noise
-  // The same plane, the same answer.
-  CHECK(looks_like_noise(plane.data(), plane.size(), 0) == looks_like_noise(plane.data(), plane.size(), 0));
 }
 
 TEST_CASE("a chunk with noise planes: zlib inflates it, the noise is stored and the high bytes deflated") {
@@ -140,7 +138,7 @@ TEST_CASE("a chunk whose rows repeat is deflated whole, and finds the repeats") 
   CHECK(d.stream.size() < chunk.size() / 2);
 }
 
-TEST_CASE("chunks of zeros give ISA-L's stream again, and so do levels 2-9, and chunks of one plane") {
+TEST_CASE("chunks of zeros give ISA-L's own stream again, and levels 4 and 9 and unshuffled chunks inflate back") {
   const std::vector<unsigned char> zeros(80'000, 0);
   ChunkDeflater fresh(1), reused(1);
   const Deflated first = deflate_chunk(reused, zeros, 8, 0);

@@ -199,14 +199,16 @@ TEST_CASE("a write that fails stops the chunk writer: its error comes back, noth
   for (const std::size_t threads : {1, 2}) {
     const ThreadLimit limit(threads);
     std::vector<std::pair<std::uint64_t, std::uint64_t>> written;
+    std::size_t calls = 0;
     // (Called from the pipeline's threads, one call at a time: no Catch assertion in it.)
     const auto write = [&](std::uint64_t row, std::uint64_t component, const unsigned char*, std::size_t) {
-      if (written.size() == 5) throw IoError("the disk is full");
+      if (++calls == 6) throw IoError("the disk is full");
       written.emplace_back(row, component);
     };
     CHECK_THROWS_WITH(h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data()), layout, "test", write),
                       "the disk is full");
-    // The chunks before the failure, in order: rows, then components.
+    // The chunks before the failure, in order (rows, then components), and no call after the failing one.
+    CHECK(calls == 6);
     REQUIRE(written.size() == 5);
     for (std::size_t k = 0; k < 5; ++k) CHECK(written[k] == std::make_pair<std::uint64_t, std::uint64_t>(k / 3, k % 3));
   }

@@ -66,14 +66,15 @@ Statistics measure(const CrowdMotion& crowd, const std::vector<Obstacle>& obstac
     for (std::size_t a = 0; a < N; ++a) all.append(of_agent(a));
     return detail::distribution(std::move(all), crowd.ids);
   };
-  s.speed = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].speed; });
-  s.acceleration = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].acceleration; });
-  s.tangential_acceleration =
-      distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].tangential; });
-  s.normal_acceleration =
-      distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].normal; });
-  s.turning_rate = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].turning; });
-  s.facing_rate = distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].facing; });
+  auto kinematic = [&](detail::Samples detail::AgentKinematics::*measure) {
+    return distribution_of([&](std::size_t a) -> const detail::Samples& { return kinematics[a].*measure; });
+  };
+  s.speed = kinematic(&detail::AgentKinematics::speed);
+  s.acceleration = kinematic(&detail::AgentKinematics::acceleration);
+  s.tangential_acceleration = kinematic(&detail::AgentKinematics::tangential);
+  s.normal_acceleration = kinematic(&detail::AgentKinematics::normal);
+  s.turning_rate = kinematic(&detail::AgentKinematics::turning);
+  s.facing_rate = kinematic(&detail::AgentKinematics::facing);
   s.displacement = distribution_of([&](std::size_t a) -> const detail::Samples& { return displacement[a]; });
   s.contacts = detail::find_contacts(crowd, obstacles, settings);
   return s;
