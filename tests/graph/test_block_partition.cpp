@@ -1,5 +1,6 @@
 // partition_time_blocks (throng/graph/partition.h): parts that are a block of consecutive samples × a group of
 // agents, about vertices_per_part vertices each, the groups cut along the block's formation edges.
+#include "spatial_pieces.h"
 #include "synthetic_crowd.h"
 
 #include <throng/core/errors.h>
@@ -150,4 +151,93 @@ TEST_CASE("bad block partition options are ConfigErrors naming the option") {
   CHECK_THROWS_WITH(partition_time_blocks(g, 0, {}), Contains("vertices per part 0"));
   CHECK_THROWS_AS(partition_time_blocks(g, -4, {}), ConfigError);
   CHECK_THROWS_WITH(partition_time_blocks(g, 100, {.imbalance = 1.0}), Contains("imbalance"));
+}
+
+namespace {
+
+// Per part, the parts of other blocks it touches (adjacent parts whose first sample differs), on average.
+double other_block_neighbours(const MotionGraph& g, const Partition& p) {
+  const std::size_t n = g.agent_count();
+  std::size_t count = 0;
+  for (std::size_t part = 0; part < p.parts.size(); ++part) {
+    const auto block = static_cast<std::size_t>(p.parts[part].front()) / n;
+    for (const int other : p.adjacent[part]) count += static_cast<std::size_t>(p.parts[static_cast<std::size_t>(other)].front()) / n != block ? 1 : 0;
+  }
+  return static_cast<double>(count) / static_cast<double>(p.parts.size());
+}
+
+// Formation edges of samples [first, last) cut by the partition.
+std::size_t cut_in(const MotionGraph& g, const Partition& p, std::size_t first, std::size_t last) {
+  const std::size_t n = g.agent_count();
+  std::size_t cut = 0;
+  for (std::size_t i = first; i < last; ++i) {
+    for (const auto& e : g.edges[i]) cut += p.part_of[i * n + static_cast<std::size_t>(e[0])] != p.part_of[i * n + static_cast<std::size_t>(e[1])] ? 1 : 0;
+  }
+  return cut;
+}
+
+}  // namespace
+
+TEST_CASE("a large block is cut into pieces by place, and a turning crowd keeps its pieces from block to block") {
+  // 20 × 20 agents turning 0.5 rad/s over 120 samples; 24 vertices a part: 20 blocks of 6 samples, 100 groups each,
+  // so each block is cut into pieces of at most 16 groups before METIS. Kept pieces let METIS group the same agents
+  // alike in consecutive blocks: a part touches few parts of the blocks beside it. Cut afresh in every block (the
+  // median along x of a turning grid takes other agents each time), it touched about twice as many.
+  const MotionGraph g = build_motion_graph(make_clip(test::marching_grid(20, 20, 120, 1.0, 1.2, 0.1, 0.5, 0.1), {}), {});
+  const Partition p = partition_time_blocks(g, 24, {});
+  CHECK(p.part_count() == 20 * 100);
+  for (const PartShape& s : shapes(g, p)) {
+    CHECK(s.samples.size() == 6);
+    CHECK(s.agents_at.front().size() <= 6);
+  }
+  CHECK(other_block_neighbours(g, p) < 3.0);  // 1.9 (4.6 cut afresh)
+  // The first block's groups each lie within one of the pieces its agents' mean places make.
+  const std::size_t n = g.agent_count();
+  Eigen::Matrix<double, Eigen::Dynamic, 2> places = Eigen::Matrix<double, Eigen::Dynamic, 2>::Zero(static_cast<Eigen::Index>(n), 2);
+  for (std::size_t i = 0; i < 6; ++i) places += g.clip.positions.middleRows(static_cast<Eigen::Index>(i * n), static_cast<Eigen::Index>(n));
+  places /= 6.0;
+  const auto pieces = detail::spatial_pieces(places, 100, 16);
+  REQUIRE(pieces.size() == 8);
+  std::vector<int> piece_of(n);
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    for (const int a : pieces[k].agents) piece_of[static_cast<std::size_t>(a)] = static_cast<int>(k);
+  }
+  for (const PartShape& s : shapes(g, p)) {
+    if (*s.samples.begin() != 0) continue;
+    std::set<int> touched;
+    for (const std::size_t a : s.agents_at.front()) touched.insert(piece_of[a]);
+    CHECK(touched.size() == 1);
+  }
+}
+
+TEST_CASE("a crowd whose agents change places gets pieces cut afresh where the old ones no longer fit") {
+  // 30 × 30 agents whose places are dealt out anew halfway (a seeded permutation); 96 vertices a part: blocks of 9
+  // samples, 84 groups of about 11 agents each, in pieces of at most 16 groups. Pieces kept from the first half
+  // would be scattered over the second, and METIS's groups with them. Cut afresh, the second half is grouped as
+  // well as the first.
+  CrowdMotion crowd = test::marching_grid(30, 30, 108, 1.0, 1.2, 0.1, 0.5, 0.1);
+  std::vector<std::size_t> order(crowd.agent_count());
+  for (std::size_t a = 0; a < order.size(); ++a) order[a] = (a * 347) % order.size();  // 347 is prime to 900
+  for (std::size_t f = 54; f < crowd.frame_count(); ++f) {
+    const CrowdMotion before = crowd;
+    for (std::size_t a = 0; a < order.size(); ++a) crowd.position(f, a) = before.position(f, order[a]);
+  }
+  const MotionGraph g = build_motion_graph(make_clip(crowd, {}), {});
+  const Partition p = partition_time_blocks(g, 96, {});
+  const double first_half = static_cast<double>(cut_in(g, p, 0, 54)), second_half = static_cast<double>(cut_in(g, p, 54, 108));
+  CHECK(second_half < 1.15 * first_half);  // 54,810 against 54,324 edges (117,072 with the first half's pieces kept)
+}
+
+TEST_CASE("block parts cut into pieces are the same whatever the thread count") {
+  const MotionGraph g = build_motion_graph(make_clip(test::marching_grid(20, 20, 60, 1.0, 1.2, 0.1, 0.5, 0.1), {}), {});
+  Partition one, two;
+  {
+    const ThreadLimit limit(1);
+    one = partition_time_blocks(g, 24, {});
+  }
+  {
+    const ThreadLimit limit(2);
+    two = partition_time_blocks(g, 24, {});
+  }
+  CHECK(one.part_of == two.part_of);
 }
