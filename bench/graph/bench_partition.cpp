@@ -13,6 +13,7 @@
 //                           through space_time_adjacency: 21, 44, 137 and 287 ms at these sizes, one core)
 //
 // Run: bench_partition --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+#include "../../tests/graph/partition_measures.h"
 #include "../../tests/graph/synthetic_crowd.h"
 
 #include <throng/core/parallel.h>
@@ -60,17 +61,6 @@ std::array<double, 2> mean_regions(const MotionGraph& graph, const Partition& p,
   return {sum[0] / drags, sum[1] / drags};
 }
 
-// Parts of other blocks (another first sample) adjacent to a part, on average.
-double cross_block_neighbours(const MotionGraph& graph, const Partition& p) {
-  const std::size_t n = graph.agent_count();
-  double count = 0;
-  for (std::size_t part = 0; part < p.parts.size(); ++part) {
-    const auto block = static_cast<std::size_t>(p.parts[part].front()) / n;
-    for (const int other : p.adjacent[part]) count += static_cast<std::size_t>(p.parts[static_cast<std::size_t>(other)].front()) / n != block ? 1 : 0;
-  }
-  return count / static_cast<double>(p.parts.size());
-}
-
 void BM_PartitionTimeBlocks(benchmark::State& state) {
   const MotionGraph graph = graph_of(static_cast<int>(state.range(0)));
   ThreadLimit threads(static_cast<std::size_t>(state.range(1)));
@@ -83,7 +73,7 @@ void BM_PartitionTimeBlocks(benchmark::State& state) {
   const auto regions = mean_regions(graph, p, columns_of(static_cast<int>(state.range(0))));
   state.counters["region0"] = regions[0];
   state.counters["region1"] = regions[1];
-  state.counters["cross_block"] = cross_block_neighbours(graph, p);
+  state.counters["cross_block"] = test::other_block_neighbours(graph, p);
 }
 
 void BM_PartitionLists(benchmark::State& state) {

@@ -1,5 +1,6 @@
 // partition_time_blocks (throng/graph/partition.h): parts that are a block of consecutive samples × a group of
 // agents, about vertices_per_part vertices each, the groups cut along the block's formation edges.
+#include "partition_measures.h"
 #include "spatial_pieces.h"
 #include "synthetic_crowd.h"
 
@@ -155,17 +156,6 @@ TEST_CASE("bad block partition options are ConfigErrors naming the option") {
 
 namespace {
 
-// Per part, the parts of other blocks it touches (adjacent parts whose first sample differs), on average.
-double other_block_neighbours(const MotionGraph& g, const Partition& p) {
-  const std::size_t n = g.agent_count();
-  std::size_t count = 0;
-  for (std::size_t part = 0; part < p.parts.size(); ++part) {
-    const auto block = static_cast<std::size_t>(p.parts[part].front()) / n;
-    for (const int other : p.adjacent[part]) count += static_cast<std::size_t>(p.parts[static_cast<std::size_t>(other)].front()) / n != block ? 1 : 0;
-  }
-  return static_cast<double>(count) / static_cast<double>(p.parts.size());
-}
-
 // Formation edges of samples [first, last) cut by the partition.
 std::size_t cut_in(const MotionGraph& g, const Partition& p, std::size_t first, std::size_t last) {
   const std::size_t n = g.agent_count();
@@ -190,7 +180,7 @@ TEST_CASE("a large block is cut into pieces by place, and a turning crowd keeps 
     CHECK(s.samples.size() == 6);
     CHECK(s.agents_at.front().size() <= 6);
   }
-  CHECK(other_block_neighbours(g, p) < 3.0);  // 1.9 (4.6 cut afresh)
+  CHECK(test::other_block_neighbours(g, p) < 3.0);  // 1.9 (4.6 cut afresh)
   // The first block's groups each lie within one of the pieces its agents' mean places make.
   const std::size_t n = g.agent_count();
   Eigen::Matrix<double, Eigen::Dynamic, 2> places = Eigen::Matrix<double, Eigen::Dynamic, 2>::Zero(static_cast<Eigen::Index>(n), 2);

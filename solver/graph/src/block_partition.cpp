@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -178,9 +179,13 @@ std::vector<std::vector<detail::AgentPiece>> plan_pieces(const MotionGraph& grap
       }
       const Eigen::Matrix<double, Eigen::Dynamic, 2> places = mean_places(graph.clip, s0, s1);
       plan[k] = detail::spatial_pieces(places, most, max_groups_per_metis);
+      // Always possible: each piece cut for `most` (≤ n) groups has at least as many agents and at most
+      // max_groups_per_metis of them, so the pieces hold groups[k] ≤ most; and each holds at least half of
+      // max_groups_per_metis, so there are at most most / 8 ≤ groups[k] / 4 of them (blocks differ by one sample,
+      // so most ≤ 2 groups[k]).
       if (!detail::share_groups(plan[k], groups[k], max_groups_per_metis)) {
-        // Not expected (pieces cut for the most groups hold fewer, above max_groups_per_metis), but always valid.
-        plan[k] = detail::spatial_pieces(places, groups[k], max_groups_per_metis);
+        throw std::logic_error("partition_time_blocks: " + std::to_string(groups[k]) + " groups do not fit " +
+                               std::to_string(plan[k].size()) + " pieces cut for " + std::to_string(most));
       }
       fresh_cut[k] = pieces_cut(graph, plan[k], s0, s1, piece_of);
     }

@@ -59,37 +59,34 @@ std::vector<AgentPiece> spatial_pieces(const Places& places, int groups, int max
 }
 
 bool share_groups(std::vector<AgentPiece>& pieces, int groups, int max_groups) {
-  long agents = 0, room = 0;
-  for (const auto& piece : pieces) {
-    if (piece.agents.empty()) return false;
-    agents += static_cast<long>(piece.agents.size());
-    room += std::min<long>(static_cast<long>(piece.agents.size()), max_groups);
-  }
-  if (pieces.empty() || groups < static_cast<long>(pieces.size()) || groups > room) return false;
-  // Each piece's quota, its floor (within [1, its room]), then the rest one at a time by the largest remainder.
   const std::size_t count = pieces.size();
+  std::vector<long> room(count);  // the most groups piece k can take
+  long agents = 0, rooms = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (pieces[k].agents.empty()) return false;
+    agents += static_cast<long>(pieces[k].agents.size());
+    room[k] = std::min<long>(static_cast<long>(pieces[k].agents.size()), max_groups);
+    rooms += room[k];
+  }
+  if (count == 0 || groups < static_cast<long>(count) || groups > rooms) return false;
+  // Each piece's quota, its floor (within [1, its room]), then the rest one at a time by the largest remainder.
   std::vector<double> quota(count);
   std::vector<long> share(count);
   long given = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    const long most = std::min<long>(static_cast<long>(pieces[k].agents.size()), max_groups);
     quota[k] = static_cast<double>(pieces[k].agents.size()) * groups / static_cast<double>(agents);
-    share[k] = std::clamp<long>(static_cast<long>(std::floor(quota[k])), 1, most);
+    share[k] = std::clamp<long>(static_cast<long>(std::floor(quota[k])), 1, room[k]);
     given += share[k];
   }
+  const auto left = [&](std::size_t k) { return quota[k] - static_cast<double>(share[k]); };
   while (given != groups) {
     const bool add = given < groups;
     std::size_t best = count;
     for (std::size_t k = 0; k < count; ++k) {
-      const long most = std::min<long>(static_cast<long>(pieces[k].agents.size()), max_groups);
-      if (add ? share[k] >= most : share[k] <= 1) continue;
-      const double left = quota[k] - static_cast<double>(share[k]);
-      if (best == count || (add ? left > quota[best] - static_cast<double>(share[best])
-                                : left < quota[best] - static_cast<double>(share[best]))) {
-        best = k;
-      }
+      if (add ? share[k] >= room[k] : share[k] <= 1) continue;
+      if (best == count || (add ? left(k) > left(best) : left(k) < left(best))) best = k;
     }
-    share[best] += add ? 1 : -1;  // a piece can always take or give one: groups is within [#pieces, room]
+    share[best] += add ? 1 : -1;  // a piece can always take or give one: groups is within [#pieces, rooms]
     given += add ? 1 : -1;
   }
   for (std::size_t k = 0; k < count; ++k) pieces[k].groups = static_cast<int>(share[k]);
