@@ -1,6 +1,7 @@
 #include "filtered_chunks.h"
 
 #include "chunk_deflate.h"
+#include "direct_write_driver.h"
 
 #include <throng/core/errors.h>
 #include <throng/core/parallel.h>
@@ -100,6 +101,16 @@ void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, s
   }
 }
 
+// A compressed chunk's buffer, aligned for the direct writes of the file driver (direct_write_driver.h): a chunk
+// written from it goes to the disk without a copy into the page cache. Uninitialised (written before it is read).
+struct AlignedDelete {
+  void operator()(unsigned char* p) const { ::operator delete[](p, std::align_val_t{direct_write_block}); }
+};
+using PackedChunk = std::unique_ptr<unsigned char[], AlignedDelete>;
+PackedChunk packed_chunk(std::size_t bytes) {
+  return PackedChunk(static_cast<unsigned char*>(::operator new[](bytes, std::align_val_t{direct_write_block})));
+}
+
 // A thread's deflater (ISA-L's level buffer, 0.3 MB) and shuffled chunk, grown as needed and kept from group to
 // group: made per group, they were page-faulted in again and again.
 struct ThreadBuffers {
@@ -154,7 +165,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
-    std::vector<std::unique_ptr<unsigned char[]>> packed;  // each out_bytes long, size[k] of them the stream
+    std::vector<PackedChunk> packed;  // each out_bytes long, size[k] of them the stream
     std::vector<std::size_t> size;
   };
   const auto compress = [&](Group& group) {
@@ -187,7 +198,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
       // before it is read).
       int status = 0;
-      group.packed[k] = std::make_unique_for_overwrite<unsigned char[]>(out_bytes);
+      group.packed[k] = packed_chunk(out_bytes);
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
                                                 group.packed[k].get(), out_bytes, &status);
       if (group.size[k] == 0) {  // a failure, not an empty chunk

@@ -36,7 +36,8 @@ struct ChunkedLayout {
 /// Filters `data` (rows × row_bytes bytes, already in the dataset's file type) chunk by chunk as a dataset of that
 /// layout stores it, and calls write(first row of the chunk, its component (0 without components), its filtered
 /// bytes and their count) for every chunk in order: by rows, then by component, one call at a time (from any of
-/// the threads: libhdf5 may be called there, never concurrently).
+/// the threads: libhdf5 may be called there, never concurrently). The bytes lie at the start of a buffer aligned to
+/// direct_write_block (direct_write_driver.h), so the file driver writes them straight to the disk.
 /// IoError naming `where` when ISA-L fails on a chunk; std::logic_error for a row that is not whole elements (of
 /// every component) or a chunk beyond 4 GiB.
 void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,

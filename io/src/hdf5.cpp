@@ -4,6 +4,7 @@
 #include <throng/io/input_file.h>
 
 #include "address_space_cap.h"
+#include "direct_write_driver.h"
 #include "filtered_chunks.h"
 #include "global_heap_check.h"
 #include "hdf5_detail.h"
@@ -829,7 +830,9 @@ File File::create(const std::filesystem::path& path, const std::string& display_
   silence_hdf5();
   Handle props(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_obj_track_times(props.id(), false);
-  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, props.id(), H5P_DEFAULT);
+  Handle access(H5Pcreate(H5P_FILE_ACCESS));
+  use_direct_write_driver(access.id());  // large raw-data writes straight to the disk (direct_write_driver.h)
+  hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, props.id(), access.id());
   const std::string name = display_name.empty() ? path.filename().string() : display_name;
   if (f < 0) throw IoError(name + ": cannot create HDF5 file (" + hdf5_reason() + ")");
   return File(Handle(f), name, make_context(path, 0, false, ReadLimits{}));
