@@ -43,8 +43,9 @@ const DirectFile* file_of(const H5FD_t* f) { return reinterpret_cast<const Direc
 // An error on libhdf5's stack (hdf5_reason() puts it in our message), and the failure status. Nothing may throw
 // through libhdf5's C frames: without memory for the text, the error is pushed without it.
 herr_t fail(const char* function, hid_t minor, const char* what, int error = 0) noexcept {
-  H5Epush2(H5E_DEFAULT, __FILE__, function, __LINE__, H5E_ERR_CLS, H5E_VFL, minor, "%s%s%s", what, error != 0 ? ": " : "",
-           error != 0 ? std::strerror(error) : "");
+  char reason[128] = "";
+  const char* text = error != 0 ? ::strerror_r(error, reason, sizeof reason) : "";  // GNU's: thread-safe
+  H5Epush2(H5E_DEFAULT, __FILE__, function, __LINE__, H5E_ERR_CLS, H5E_VFL, minor, "%s%s%s", what, error != 0 ? ": " : "", text);
   return -1;
 }
 
