@@ -6,6 +6,7 @@
 
 #include <throng/core/errors.h>
 #include <throng/io/atomic_output.h>
+#include <throng/io/input_crash.h>
 #include <throng/process/huge_pages.h>
 #include <throng/process/process.h>
 
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
   using namespace throng;
   restart_with_huge_pages(argv);  // first: the heap's huge pages are decided when the program starts
   install_interrupt_cleanup();
+  install_input_crash_report();  // libhdf5 faulting on a damaged input: a message and exit 3, not a core
   Process process;  // BLAS kernels chosen before any BLAS call, so no result depends on which method ran first
 
   cli::Context context(argc, argv, process);

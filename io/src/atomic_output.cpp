@@ -81,9 +81,7 @@ extern "C" void remove_pending_and_exit(int signal) {
     // nobody will act on this one but this handler.
     if (defer_depth.load() > 0) return;
   }
-  for (auto& slot : pending) {
-    if (slot.state.load() == slot_published) ::unlink(slot.path);
-  }
+  detail::remove_pending_outputs();
   in_handler.store(true);
   if (const Note* note = interrupt_note.load()) write_all(note->fd, note->text.data(), note->text.size());
   ::_exit(128 + signal);
@@ -252,6 +250,16 @@ void move_into_place(const std::filesystem::path& from, const std::filesystem::p
   ::close(dir);
   if (!flushed) throw IoError(target.string() + ": written, but its folder cannot be flushed to disk (" + reason(error) + ")");
 }
+
+namespace detail {
+
+void remove_pending_outputs() noexcept {
+  for (auto& slot : pending) {
+    if (slot.state.load() == slot_published) ::unlink(slot.path);
+  }
+}
+
+}  // namespace detail
 
 void install_interrupt_cleanup() {
   static const int signals[] = {SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGUSR1,

@@ -1,6 +1,7 @@
 #include <throng/core/errors.h>
 #include <throng/io/checked_numbers.h>
 #include <throng/io/hdf5.h>
+#include <throng/io/input_crash.h>
 #include <throng/io/input_file.h>
 
 #include "address_space_cap.h"
@@ -13,6 +14,7 @@
 #include <H5PLpublic.h>
 
 #include <algorithm>
+#include <memory>
 #include <cstring>
 #include <mutex>
 #include <type_traits>
@@ -33,6 +35,7 @@ struct ReadContext {
   std::uint64_t heap_bytes = 0;  ///< total size of the objects of every global heap collection (vlen data)
   Handle link_access, group_access, dataset_access;  ///< refuse traversing external links
   Handle transfer;  ///< dataset reads: a value out of range of the type read is an error, not clamped
+  std::unique_ptr<ReadingInput> reading;  ///< an input: a crash inside libhdf5 is reported as its damage (input_crash.h)
 };
 
 namespace {
@@ -841,6 +844,7 @@ File File::create(const std::filesystem::path& path, const std::string& display_
 File File::open(const std::filesystem::path& path, const ReadLimits& limits) {
   silence_hdf5();
   const std::uint64_t size = check_input_file(path, "an HDF5 file");
+  auto reading = std::make_unique<ReadingInput>(path);  // from libhdf5's first look at the file
   const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
   if (is_hdf5 <= 0) throw InputError(path.string() + ": is not an HDF5 file");
   // Closing the file closes everything of it still open (an error path may leave a dataset handle behind).
@@ -848,7 +852,9 @@ File File::open(const std::filesystem::path& path, const ReadLimits& limits) {
   H5Pset_fclose_degree(access.id(), H5F_CLOSE_STRONG);
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.id());
   if (f < 0) throw InputError(path.string() + ": cannot open as HDF5 (" + hdf5_reason() + "); is the file truncated or damaged?");
-  return File(Handle(f), path.filename().string(), make_context(path, size, true, limits));
+  auto context = make_context(path, size, true, limits);
+  context->reading = std::move(reading);
+  return File(Handle(f), path.filename().string(), std::move(context));
 }
 
 File File::open_for_update(const std::filesystem::path& path, const std::string& display_name) {

@@ -75,6 +75,25 @@ TEST_CASE("every reproducer of issue 18 gives its exit code and message, writes 
   CHECK(cases >= 12);
 }
 
+TEST_CASE("a file that makes libhdf5 itself crash is reported as damaged: exit 3, a message, nothing written") {
+  // libhdf5 1.10.8 reads through a wild pointer in H5HG_read on this file (tests/data/damaged/README.md): the
+  // program used to die with a segmentation fault (139). Several commands, as a farm job meets the file.
+  const auto in = test::source_dir() / "tests" / "data" / "damaged" / "global_heap_index_crash.h5";
+  const std::string before = bytes_of(in);
+  const auto dir = test::scratch_dir("cli_hostile_libhdf5_crash");
+  for (const std::string& command : {"info " + in.string(), "export " + in.string() + " -o " + (dir / "out.csv").string(),
+                                    "check-motion " + in.string(),
+                                    "collide " + in.string() + " -o " + (dir / "repaired.h5").string()}) {
+    INFO("throng " << command);
+    std::string out;
+    CHECK(test::run_command(throng_cmd(command), &out) == 3);
+    CHECK_THAT(out, Contains("global_heap_index_crash.h5") && Contains("libhdf5 crashed while reading it"));
+    CHECK(out.size() < 1000);
+    CHECK(files_in(dir) == 0);  // no output, no temporary
+  }
+  CHECK(bytes_of(in) == before);
+}
+
 TEST_CASE("an output that is not a regular file, or an empty output name, is refused before any work") {
   const auto dir = test::scratch_dir("cli_hostile_outputs");
   const std::string hotel = (test::real_data_dir() / "hotel").string();

@@ -83,9 +83,14 @@ void move_into_place(const std::filesystem::path& from, const std::filesystem::p
 /// Installs handlers for every catchable signal whose default is to end the process (SIGHUP, SIGINT, SIGQUIT,
 /// SIGTERM, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF, SIGABRT) that remove every
 /// pending temporary output and exit with 128 + signal (130 for Ctrl-C). A signal ignored when the program
-/// started (`nohup` ignores SIGHUP) stays ignored. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL) are left to the
-/// sanitizers and the system. Safe to call more than once.
+/// started (`nohup` ignores SIGHUP) stays ignored. Faults (SIGSEGV, SIGBUS, SIGFPE, SIGILL) are left to
+/// install_input_crash_report (input_crash.h), the sanitizers and the system. Safe to call more than once.
 void install_interrupt_cleanup();
+
+namespace detail {
+/// Unlinks every pending temporary output (async-signal-safe: for signal handlers, input_crash.h's too).
+void remove_pending_outputs() noexcept;
+}  // namespace detail
 
 /// While one lives, the handlers of install_interrupt_cleanup() only note a terminating signal; when the last one
 /// ends, a noted signal is acted on as it would have been (pending temporaries removed, the note written, exit
