@@ -861,12 +861,15 @@ File File::open_for_update(const std::filesystem::path& path, const std::string&
   silence_hdf5();
   const std::string name = display_name.empty() ? path.filename().string() : display_name;
   (void)check_input_file(path, "an HDF5 file");
+  auto reading = std::make_unique<ReadingInput>(path);  // a file to resume may be damaged (a power loss)
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(name + ": is not an HDF5 file");
   Handle access(H5Pcreate(H5P_FILE_ACCESS));
   H5Pset_fclose_degree(access.id(), H5F_CLOSE_STRONG);
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, access.id());
   if (f < 0) throw InputError(name + ": cannot open for writing (" + hdf5_reason() + "); is the file damaged?");
-  return File(Handle(f), name, make_context(path, 0, false, ReadLimits{}));
+  auto context = make_context(path, 0, false, ReadLimits{});
+  context->reading = std::move(reading);
+  return File(Handle(f), name, std::move(context));
 }
 
 void File::flush() const {

@@ -87,7 +87,7 @@ TEST_CASE("a file that makes libhdf5 itself crash is reported as damaged: exit 3
     INFO("throng " << command);
     std::string out;
     CHECK(test::run_command(throng_cmd(command), &out) == 3);
-    CHECK_THAT(out, Contains("global_heap_index_crash.h5") && Contains("libhdf5 crashed while reading it"));
+    CHECK_THAT(out, Contains("global_heap_index_crash.h5") && Contains("crashed while reading it"));
     CHECK(out.size() < 1000);
     CHECK(files_in(dir) == 0);  // no output, no temporary
   }

@@ -171,10 +171,11 @@ class File {
 
  private:
   File(Handle handle, std::string name, std::shared_ptr<ReadContext> context)
-      : handle_(std::move(handle)), name_(std::move(name)), context_(std::move(context)) {}
+      : context_(std::move(context)), handle_(std::move(handle)), name_(std::move(name)) {}
+  // The context first: it is destroyed last, so an input's ReadingInput (input_crash.h) still guards its close.
+  std::shared_ptr<ReadContext> context_;
   Handle handle_;
   std::string name_;
-  std::shared_ptr<ReadContext> context_;
 };
 
 }  // namespace throng::h5
