@@ -60,15 +60,6 @@ std::atomic<const Note*> interrupt_note{nullptr};
 // Set by the handler before it reads the note: from then on a replaced note is never freed (the process is ending).
 std::atomic<bool> in_handler{false};
 
-void write_all(int fd, const char* data, std::size_t size) {
-  while (size > 0) {
-    const ssize_t n = ::write(fd, data, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    data += n;
-    size -= static_cast<std::size_t>(n);
-  }
-}
 
 // DeferredInterrupts: how many live, and the signal noted meanwhile (0: none).
 std::atomic<int> defer_depth{0};
@@ -83,7 +74,7 @@ extern "C" void remove_pending_and_exit(int signal) {
   }
   detail::remove_pending_outputs();
   in_handler.store(true);
-  if (const Note* note = interrupt_note.load()) write_all(note->fd, note->text.data(), note->text.size());
+  if (const Note* note = interrupt_note.load()) detail::write_from_handler(note->fd, note->text.data(), note->text.size());
   ::_exit(128 + signal);
 }
 
@@ -252,6 +243,16 @@ void move_into_place(const std::filesystem::path& from, const std::filesystem::p
 }
 
 namespace detail {
+
+void write_from_handler(int fd, const char* data, std::size_t size) noexcept {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+}
 
 void remove_pending_outputs() noexcept {
   for (auto& slot : pending) {

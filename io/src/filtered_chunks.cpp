@@ -101,16 +101,8 @@ void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, s
   }
 }
 
-// A compressed chunk's buffer, aligned for the direct writes of the file driver (direct_write_driver.h): a chunk
+// A compressed chunk's buffer is aligned for the direct writes of the file driver (direct_write_driver.h): a chunk
 // written from it goes to the disk without a copy into the page cache. Uninitialised (written before it is read).
-struct AlignedDelete {
-  void operator()(unsigned char* p) const { ::operator delete[](p, std::align_val_t{direct_write_block}); }
-};
-using PackedChunk = std::unique_ptr<unsigned char[], AlignedDelete>;
-PackedChunk packed_chunk(std::size_t bytes) {
-  return PackedChunk(static_cast<unsigned char*>(::operator new[](bytes, std::align_val_t{direct_write_block})));
-}
-
 // A thread's deflater (ISA-L's level buffer, 0.3 MB) and shuffled chunk, grown as needed and kept from group to
 // group: made per group, they were page-faulted in again and again.
 struct ThreadBuffers {
@@ -165,7 +157,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
-    std::vector<PackedChunk> packed;  // each out_bytes long, size[k] of them the stream
+    std::vector<AlignedBytes> packed;  // each out_bytes long, size[k] of them the stream
     std::vector<std::size_t> size;
   };
   const auto compress = [&](Group& group) {
@@ -198,7 +190,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
       // before it is read).
       int status = 0;
-      group.packed[k] = packed_chunk(out_bytes);
+      group.packed[k] = aligned_bytes(out_bytes);
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
                                                 group.packed[k].get(), out_bytes, &status);
       if (group.size[k] == 0) {  // a failure, not an empty chunk

@@ -38,16 +38,6 @@ constexpr int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL};
 // The main thread's stack for the handler (a stack overflow leaves none).
 alignas(16) char handler_stack[64 * 1024];
 
-void write_all(const char* data, std::size_t size) {
-  while (size > 0) {
-    const ssize_t n = ::write(STDERR_FILENO, data, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    data += n;
-    size -= static_cast<std::size_t>(n);
-  }
-}
-
 // The executable segments' range of the loaded object that holds `address`.
 CodeRange code_of(const void* address) {
   struct Search {
@@ -100,13 +90,14 @@ extern "C" void report_input_crash(int signal, siginfo_t* info, void* context) {
     std::uint64_t last_opened = 0;
     for (std::size_t i = 0; i < reading.size(); ++i) {
       const std::string* message = reading[i].load();
-      if (message != nullptr && message != &reserved && opened[i].load() >= last_opened) {
+      const std::uint64_t order = opened[i].load();
+      if (message != nullptr && message != &reserved && order >= last_opened) {
         last = message;
-        last_opened = opened[i].load();
+        last_opened = order;
       }
     }
     if (last != nullptr) {
-      write_all(last->data(), last->size());
+      detail::write_from_handler(STDERR_FILENO, last->data(), last->size());
       ::_exit(3);
     }
   }

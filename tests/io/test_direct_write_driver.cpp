@@ -48,20 +48,15 @@ bool takes_direct_io(const std::filesystem::path& folder) {
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT | O_CLOEXEC, 0644);
   bool written = false;
   if (fd >= 0) {
-    void* block = ::operator new(direct_write_block, std::align_val_t{direct_write_block});
-    std::memset(block, 7, direct_write_block);
-    written = ::pwrite(fd, block, direct_write_block, 0) == static_cast<ssize_t>(direct_write_block);
-    ::operator delete(block, std::align_val_t{direct_write_block});
+    const h5::detail::AlignedBytes block = h5::detail::aligned_bytes(direct_write_block);
+    std::memset(block.get(), 7, direct_write_block);
+    written = ::pwrite(fd, block.get(), direct_write_block, 0) == static_cast<ssize_t>(direct_write_block);
     ::close(fd);
   }
   std::filesystem::remove(probe);
   if (!written) WARN(folder.string() << ": its file system refuses O_DIRECT writes; only the page-cache path is checked here");
   return written;
 }
-
-struct AlignedDelete {
-  void operator()(unsigned char* p) const { ::operator delete[](p, std::align_val_t{direct_write_block}); }
-};
 
 enum class Driver { direct, direct_refused, sec2 };
 
@@ -89,8 +84,7 @@ void write_sample(const std::filesystem::path& path, Driver driver) {
   REQUIRE(H5Pset_obj_track_times(plain, false) >= 0);
   const hid_t set = H5Dcreate2(file, "raw", H5T_NATIVE_UINT8, space, H5P_DEFAULT, create, H5P_DEFAULT);
   REQUIRE(set >= 0);
-  std::unique_ptr<unsigned char[], AlignedDelete> buffer(
-      static_cast<unsigned char*>(::operator new[](chunk + direct_write_block, std::align_val_t{direct_write_block})));
+  const h5::detail::AlignedBytes buffer = h5::detail::aligned_bytes(chunk + direct_write_block);
   for (hsize_t c = 0; c < 3; ++c) {
     unsigned char* bytes = buffer.get() + (c == 1 ? 1 : 0);
     for (hsize_t i = 0; i < chunk; ++i) bytes[i] = static_cast<unsigned char>((i * 31 + c * 7) % 251);
@@ -187,8 +181,7 @@ TEST_CASE("the direct-write driver splits a write into a page-cache head, whole 
   H5FD_t* file = H5FDopen(path.c_str(), H5F_ACC_RDWR | H5F_ACC_CREAT | H5F_ACC_TRUNC, access, haddr_t{1} << 40);
   REQUIRE(file != nullptr);
   REQUIRE(H5FDset_eoa(file, H5FD_MEM_DRAW, end) >= 0);
-  std::unique_ptr<unsigned char[], AlignedDelete> buffer(
-      static_cast<unsigned char*>(::operator new[](big + direct_write_block, std::align_val_t{direct_write_block})));
+  const h5::detail::AlignedBytes buffer = h5::detail::aligned_bytes(big + direct_write_block);
   std::string expected(end, '\0');
   const auto put = [&](haddr_t address, std::size_t size, std::size_t buffer_offset, unsigned seed) {
     unsigned char* bytes = buffer.get() + buffer_offset;

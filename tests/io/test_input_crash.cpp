@@ -57,9 +57,13 @@ struct Child {
   std::string stderr_text;
 };
 
-// Runs `body` in a child whose stderr goes to `log`; the child's wait status and what it printed.
+// Runs `body` in a child whose stderr goes to dir/stderr.txt, armed as the program is: the interrupt cleanup and
+// the crash handlers installed, and one pending output, dir/out/result.h5, whose temporary exists when `body`
+// starts (exit 93 otherwise). The child's wait status and what it printed.
 template <class Body>
-Child run_child(const std::filesystem::path& log, Body body) {
+Child run_armed_child(const std::filesystem::path& dir, Body body) {
+  std::filesystem::create_directories(dir / "out");
+  const auto log = dir / "stderr.txt";
   std::fflush(nullptr);
   const pid_t pid = ::fork();
   REQUIRE(pid >= 0);
@@ -69,6 +73,10 @@ Child run_child(const std::filesystem::path& log, Body body) {
     const rlimit no_core{0, 0};  // the crash this child may end in leaves no core file behind
     ::setrlimit(RLIMIT_CORE, &no_core);
     try {
+      install_interrupt_cleanup();
+      detail::install_input_crash_handlers();
+      AtomicOutput output(dir / "out" / "result.h5");
+      if (!std::filesystem::exists(output.temporary())) ::_exit(93);
       body();
     } catch (...) {
       ::_exit(92);  // never back into the test runner from a child
@@ -105,12 +113,7 @@ std::size_t files_in(const std::filesystem::path& dir) {
 
 TEST_CASE("a fault in library code while an input is read is reported as its damage: message, exit 3, outputs removed") {
   const auto dir = test::scratch_dir("input_crash_reading");
-  const auto out_dir = dir / "out";
-  std::filesystem::create_directories(out_dir);
-  const Child child = run_child(dir / "stderr.txt", [&] {
-    install_interrupt_cleanup();
-    detail::install_input_crash_handlers();
-    AtomicOutput output(out_dir / "result.h5");
+  const Child child = run_armed_child(dir, [&] {
     auto first = std::make_unique<ReadingInput>(dir / "first.h5");
     const ReadingInput second(dir / "second.h5");
     first.reset();  // its slot is taken again by the input opened next, which is the one named
@@ -124,19 +127,14 @@ TEST_CASE("a fault in library code while an input is read is reported as its dam
   CHECK(child.stderr_text.find("crashed while reading it") != std::string::npos);
   CHECK(child.stderr_text.find("first.h5") == std::string::npos);
   CHECK(child.stderr_text.find("second.h5") == std::string::npos);
-  CHECK(files_in(out_dir) == 0);  // the temporary output removed
+  CHECK(files_in(dir / "out") == 0);  // the temporary output removed
 }
 
 TEST_CASE("a fault in throng's own code, or a signal sent with kill, stays a crash while an input is read") {
   const auto dir = test::scratch_dir("input_crash_own_fault");
-  const auto out_dir = dir / "out";
-  std::filesystem::create_directories(out_dir);
   for (int sent : {0, 1}) {
     INFO((sent ? "SIGSEGV sent with raise" : "a null store in our code"));
-    const Child child = run_child(dir / "stderr.txt", [&] {
-      install_interrupt_cleanup();
-      detail::install_input_crash_handlers();
-      AtomicOutput output(out_dir / "result.h5");
+    const Child child = run_armed_child(dir, [&] {
       const ReadingInput input(dir / "input.h5");
       if (sent) std::raise(SIGSEGV);
       else fault_in_own_code();
@@ -145,18 +143,13 @@ TEST_CASE("a fault in throng's own code, or a signal sent with kill, stays a cra
     REQUIRE(WIFSIGNALED(child.status));
     CHECK(WTERMSIG(child.status) == SIGSEGV);
     CHECK(child.stderr_text.find("crashed while reading") == std::string::npos);
-    CHECK(files_in(out_dir) == 0);  // the pending output removed all the same
+    CHECK(files_in(dir / "out") == 0);  // the pending output removed all the same
   }
 }
 
 TEST_CASE("a fault while no input is read stays a crash, its pending outputs removed") {
   const auto dir = test::scratch_dir("input_crash_not_reading");
-  const auto out_dir = dir / "out";
-  std::filesystem::create_directories(out_dir);
-  const Child child = run_child(dir / "stderr.txt", [&] {
-    install_interrupt_cleanup();
-    detail::install_input_crash_handlers();
-    AtomicOutput output(out_dir / "result.h5");
+  const Child child = run_armed_child(dir, [&] {
     {
       const ReadingInput ended(dir / "read_before.h5");
     }
@@ -166,6 +159,6 @@ TEST_CASE("a fault while no input is read stays a crash, its pending outputs rem
   REQUIRE(WIFSIGNALED(child.status));
   CHECK(WTERMSIG(child.status) == SIGSEGV);
   CHECK(child.stderr_text.find("libhdf5 crashed") == std::string::npos);
-  CHECK(files_in(out_dir) == 0);
+  CHECK(files_in(dir / "out") == 0);
 }
 #endif

@@ -13,6 +13,7 @@
 //   install_interrupt_cleanup() sets up (the program calls it once). An input is never opened for writing.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <future>
 #include <string>
@@ -90,6 +91,8 @@ void install_interrupt_cleanup();
 namespace detail {
 /// Unlinks every pending temporary output (async-signal-safe: for signal handlers, input_crash.h's too).
 void remove_pending_outputs() noexcept;
+/// Writes `size` bytes to `fd` through partial writes and EINTR, giving up on an error (async-signal-safe).
+void write_from_handler(int fd, const char* data, std::size_t size) noexcept;
 }  // namespace detail
 
 /// While one lives, the handlers of install_interrupt_cleanup() only note a terminating signal; when the last one
