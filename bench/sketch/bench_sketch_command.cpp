@@ -4,11 +4,17 @@
 // writing at most 20 % of the time.
 //
 //   mode 0  before issue 19: every frame held in memory, then write_crowd_file (sketch::run + write_crowd_file)
-//   mode 1  written as it goes, each full block compressed and written on the simulating thread (the command)
-//   mode 2  written as it goes, blocks compressed and written by a writer thread beside the simulation
+//   mode 1  written as it goes, each full block compressed and written on the simulating thread (the command
+//           before 6 December 2026)
+//   mode 2  written as it goes, blocks compressed and written by a writer thread beside the simulation (the command)
 //   mode 3  the frames made and dropped (the simulation and its sampling alone): the writing's cost in modes 1-2
 //           is their time less this one's
 // storage 0: shuffle + deflate (the default); 1: plain, the chunks unfiltered (`throng --compression none`).
+//
+// Counters: `write_share`, the time spent in the writing code (compressing, writing, the file's header and its
+// flush to disk; in mode 2 the writer thread's busy time, which overlaps the simulation) over the command's time;
+// and, in modes 1-2, `cost_share`, what the file costs the command: 1 − (the same run with its frames dropped, as
+// mode 3, timed in the same iteration just before, with the benchmark's timer paused) / (the command's time).
 //
 // The crowd: N agents at 1 per m² in a square of side √N metres walking east between auxiliary lines (as
 // bench_sketch's BM_Step), `seconds` of crowd time at 10 frames per second: 4 s (100 steps, 41 frames), where the
@@ -99,8 +105,16 @@ void BM_SketchCommand(benchmark::State& state) {
       std::filesystem::temp_directory_path() / ("bench_sketch_command_" + std::to_string(getpid()) + ".h5");
   NoProgress quiet;
   std::size_t agent_steps = 0;
-  double writing = 0, total = 0;
+  double writing = 0, total = 0, dropped = 0;
   for (auto _ : state) {
+    if (mode == 1 || mode == 2) {  // the same run without the file, outside the timed region: cost_share's baseline
+      state.PauseTiming();
+      DroppedFrames sink;
+      const auto begin = std::chrono::steady_clock::now();
+      (void)sketch::run({}, job, quiet, Communicator::single(), sink, 0.0);
+      dropped += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+      state.ResumeTiming();
+    }
     const auto start = std::chrono::steady_clock::now();
     if (mode == 0) {
       Run run = sketch::run({}, job, quiet, Communicator::single());
@@ -127,18 +141,20 @@ void BM_SketchCommand(benchmark::State& state) {
   std::filesystem::remove(out);
   state.SetItemsProcessed(static_cast<std::int64_t>(agent_steps));
   state.counters["write_share"] = total > 0 ? writing / total : 0.0;
+  if (mode == 1 || mode == 2) state.counters["cost_share"] = total > 0 ? 1.0 - dropped / total : 0.0;
 }
 BENCHMARK(BM_SketchCommand)
     ->ArgNames({"agents", "mode", "storage", "seconds"})
     ->ArgsProduct({{10000, 100000}, {0, 1, 2}, {0, 1}, {4}})
     ->Args({10000, 3, 0, 4})
     ->Args({100000, 3, 0, 4})
-    ->ArgsProduct({{10000}, {1, 3}, {0, 1}, {60}})
+    ->ArgsProduct({{10000}, {1, 2, 3}, {0, 1}, {60}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_SketchCommand)
     ->ArgNames({"agents", "mode", "storage", "seconds"})
-    ->ArgsProduct({{1000000}, {0, 1}, {0, 1}, {4}})
+    ->ArgsProduct({{1000000}, {0, 1, 2}, {0, 1}, {4}})
+    ->Args({1000000, 3, 0, 4})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
