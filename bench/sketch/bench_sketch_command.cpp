@@ -14,7 +14,9 @@
 // Counters: `write_share`, the time spent in the writing code (compressing, writing, the file's header and its
 // flush to disk; in mode 2 the writer thread's busy time, which overlaps the simulation) over the command's time;
 // and, in modes 1-2, `cost_share`, what the file costs the command: 1 − (the same run with its frames dropped, as
-// mode 3, timed in the same iteration just before, with the benchmark's timer paused) / (the command's time).
+// mode 3, timed in the same iteration just before, with the benchmark's timer paused) / (the command's time), both
+// summed over the repetition's iterations. (With one iteration, at 1,000,000 agents, the first repetition's dropped
+// run pays the process's first touch of its memory, so its cost_share comes out low.)
 //
 // The crowd: N agents at 1 per m² in a square of side √N metres walking east between auxiliary lines (as
 // bench_sketch's BM_Step), `seconds` of crowd time at 10 frames per second: 4 s (100 steps, 41 frames), where the

@@ -24,7 +24,7 @@ namespace {
 // (false). Measured on 2 cores (docs/commands/sketch.md, "A writer thread again"): with zlib the compression kept
 // both cores busy and a writer thread gained nothing; with today's compression it fills the moments the
 // simulation's steps leave a core idle: 5-11 % faster with deflate at 10,000 and 100,000 agents, 8-31 % without
-// compression, the same at 1,000,000 (and its first command 15-20 % faster), for a second block per dataset
+// compression, the same at 1,000,000 (and its first repetition 12-19 % faster), for a second block per dataset
 // (16 MB more at 10,000 agents, 136 MB at 1,000,000).
 constexpr bool write_in_background = true;
 

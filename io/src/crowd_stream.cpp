@@ -34,7 +34,8 @@ using h5::Handle;
 // rows (compressed: each of a row's components in a chunk of its own).
 constexpr std::uint64_t chunk_target_bytes = 256 * 1024;
 // A block: whole chunks, about this many bytes, and at least two chunks (filter_chunks compresses a block's chunks
-// in parallel: a block of one chunk, a frame of 1,000,000 agents, would keep one thread busy and the other idle).
+// in parallel: a block of one chunk, a frame of 1,000,000 agents, would keep one thread busy and the other idle);
+// except in a short run, where add_stream keeps blocks to about a quarter of the frames, one chunk at least.
 constexpr std::uint64_t block_target_bytes = 4 * 1024 * 1024;
 constexpr std::uint64_t block_min_chunks = 2;
 
@@ -274,6 +275,10 @@ CrowdStreamWriter::CrowdStreamWriter(const std::filesystem::path& target, Shape 
   Impl& w = *impl_;
   if (w.N == 0) throw std::logic_error("CrowdStreamWriter: a crowd of at least one agent is needed");
   if (!w.shape.frames_known && w.shape.frames == 0) throw std::logic_error("CrowdStreamWriter: the most frames there can be is needed");
+  // Before the first libhdf5 call below (H5T_NATIVE_DOUBLE starts the library): libhdf5 must not be shut down at
+  // exit after a failed write (hdf5.cpp's silence_hdf5). `throng sketch` reads no file, so this was its first call,
+  // and a full disk ended in a segmentation fault at exit after the message.
+  h5::detail::silence_hdf5();
   if (H5Tequal(H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE) <= 0 || H5Tequal(H5T_NATIVE_INT64, H5T_STD_I64LE) <= 0 ||
       H5Tequal(H5T_NATIVE_INT32, H5T_STD_I32LE) <= 0) {
     throw std::logic_error("CrowdStreamWriter: a little-endian machine is needed (the chunks are filtered as stored)");

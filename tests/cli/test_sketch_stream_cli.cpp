@@ -179,6 +179,14 @@ TEST_CASE("a streamed sketch file equals the one written from memory") {
     compare(large, "large", 2, false);
     compare(large, "large_t1", 1, true);
   }
+  SECTION("41 frames with the writer thread: blocks of about a quarter of the run, an action chunk larger than that") {
+    // 2,000 agents: position blocks of 11 rows, the last one 8; action chunks of 32 rows, so one block of a chunk
+    // (more than a quarter) and an edge block of 9 rows at the end.
+    scenes::SketchScene large = scenes::large_crowd();
+    large.options.duration_s = 4;
+    compare(large, "large_41", 2, true);
+    compare(large, "large_41_t1", 1, true);
+  }
 }
 
 TEST_CASE("a sketch streamed with plain storage holds the same values, unfiltered") {
@@ -256,6 +264,22 @@ TEST_CASE("a streamed run holds its times and a few blocks and not its frames") 
   CHECK(file.root().shape("particles/trajectory/position/value") == std::vector<std::uint64_t>{20001, 200, 3});
   CHECK(file.root().shape("particles/trajectory/orientation/value") == std::vector<std::uint64_t>{20001, 200, 4});
   CHECK(temporary_of(dir, "paper.h5").empty());
+}
+
+TEST_CASE("a disk that fills while a sketch streams exits 4, leaving the previous output and no temporary") {
+  // A file size limit (ulimit -f, 512-byte blocks; SIGXFSZ ignored, so writes past it fail with EFBIG as with a
+  // full disk): the writer thread's first blocks fail and the failure reaches the command through the frames.
+  const auto dir = test::scratch_dir("cli_sketch_stream_full_disk");
+  test::write_file(dir / "large.h5", "the previous output\n");
+  std::string out;
+  const std::string command = test::throng_program().string() + " sketch " + test::config("sketch-large.yaml") +
+                              " --set duration=20 -o " + (dir / "large.h5").string();
+  const int status = test::run_command("sh -c \"trap '' XFSZ; ulimit -f 2048; exec " + command + "\"", &out);
+  INFO(out);
+  CHECK(status == 4);
+  CHECK_THAT(out, Catch::Contains("large.h5"));
+  CHECK(read_text(dir / "large.h5") == "the previous output\n");
+  CHECK(temporary_of(dir, "large.h5").empty());
 }
 
 TEST_CASE("a streamed sketch stopped by a signal leaves the previous output or none and no temporary") {
