@@ -128,9 +128,10 @@ struct CrowdStreamWriter::Impl {
     // No more rows than the frames there can be (rounded up to whole chunks).
     const std::uint64_t most = (shape.frames + s.chunk_rows - 1) / s.chunk_rows * s.chunk_rows;
     s.block_rows = std::max<std::uint64_t>(1, std::min(s.block_rows, most));
-    // And no more than about a quarter of those frames (whole chunks), so that a short run hands most of its rows
-    // over while it goes on rather than all in finish(): a 41-frame crowd of 10,000 agents held its action and id
-    // frames (4.9 MB) to the end, with the writer thread 53.7-54.1 against 56.0-56.7 ms (medians of 7, in turn).
+    // And about a quarter of those frames at most, rounded up to whole chunks (one at least), so that a short run
+    // hands most of its rows over while it goes on rather than all in finish(): a 41-frame crowd of 10,000 agents
+    // held its action and id frames (4.9 MB) to the end, with the writer thread 53.7-54.1 against 56.0-56.7 ms
+    // (medians of 7, in turn). A run of unknown length counts the most frames it can have, so this seldom binds.
     const std::uint64_t quarter = (shape.frames + 3) / 4;
     s.block_rows = std::min(s.block_rows, std::max<std::uint64_t>(1, (quarter + s.chunk_rows - 1) / s.chunk_rows) * s.chunk_rows);
     if (shape.frames_known) s.chunk_rows = std::min(s.chunk_rows, shape.frames);  // write_crowd_file's min(rows, T)

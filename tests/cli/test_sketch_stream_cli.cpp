@@ -180,8 +180,9 @@ TEST_CASE("a streamed sketch file equals the one written from memory") {
     compare(large, "large_t1", 1, true);
   }
   SECTION("41 frames with the writer thread: blocks of about a quarter of the run, an action chunk larger than that") {
-    // 2,000 agents: position blocks of 11 rows, the last one 8; action chunks of 32 rows, so one block of a chunk
-    // (more than a quarter) and an edge block of 9 rows at the end.
+    // 2,000 agents: position blocks of 15 rows (3 chunks of 5), the last one 11; orientation 12, 12, 12 and 5;
+    // action chunks of 32 rows, so one block of a chunk (more than a quarter) and an edge block of 9 rows at the
+    // end; id 16, 16 and 9.
     scenes::SketchScene large = scenes::large_crowd();
     large.options.duration_s = 4;
     compare(large, "large_41", 2, true);
