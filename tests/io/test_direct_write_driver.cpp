@@ -11,6 +11,7 @@
 
 #include <hdf5.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -22,6 +23,7 @@
 #include <new>
 #include <random>
 #include <string>
+#include <dlfcn.h>
 #include <unistd.h>
 #include <vector>
 
@@ -30,6 +32,31 @@
 using namespace throng;
 using h5::detail::direct_write_block;
 using h5::detail::direct_write_minimum;
+
+namespace {
+
+// A file system that takes an O_DIRECT open and then refuses the writes with EINVAL (some network and FUSE file
+// systems, or blocks larger than the driver's): while `refuse_direct_writes` is set, every pwrite through a
+// descriptor opened with O_DIRECT fails so, and is counted. The pwrite below stands in for the C library's in this
+// test program (the driver, linked in statically, calls it); it passes every other write on.
+std::atomic<bool> refuse_direct_writes{false};
+std::atomic<int> refused_direct_writes{0};
+
+}  // namespace
+
+extern "C" ssize_t pwrite(int fd, const void* bytes, size_t size, off_t offset) {
+  using Real = ssize_t (*)(int, const void*, size_t, off_t);
+  static const Real real = reinterpret_cast<Real>(::dlsym(RTLD_NEXT, "pwrite"));
+  if (refuse_direct_writes.load()) {
+    const int flags = ::fcntl(fd, F_GETFL);
+    if (flags >= 0 && (flags & O_DIRECT) != 0) {
+      refused_direct_writes.fetch_add(1);
+      errno = EINVAL;
+      return -1;
+    }
+  }
+  return real(fd, bytes, size, offset);
+}
 
 namespace {
 
@@ -162,6 +189,23 @@ TEST_CASE("the direct-write driver writes through the page cache where O_DIRECT 
   CHECK(h5::detail::direct_write_bytes() == before);
   write_sample(dir / "sec2.h5", Driver::sec2);
   CHECK(bytes_of(dir / "refused.h5") == bytes_of(dir / "sec2.h5"));
+}
+
+TEST_CASE("the direct-write driver falls back to the page cache when the file system refuses a direct write", "[io][direct]") {
+  // The O_DIRECT open succeeds, the first direct write fails with EINVAL (the pwrite above): that write and every
+  // later one go through the page cache, and the file is still sec2's byte for byte.
+  const auto dir = test::scratch_dir("direct_write_einval");
+  if (!takes_direct_io(dir)) return;  // no O_DIRECT open here, so no direct write to refuse (the test above covers it)
+  const std::size_t before = h5::detail::direct_write_bytes();
+  refused_direct_writes = 0;
+  refuse_direct_writes = true;
+  write_sample(dir / "einval.h5", Driver::direct);
+  refuse_direct_writes = false;
+  CHECK(refused_direct_writes.load() == 1);  // the first chunk's; the driver then closed its O_DIRECT descriptor
+  CHECK(h5::detail::direct_write_bytes() == before);
+  write_sample(dir / "sec2.h5", Driver::sec2);
+  CHECK(bytes_of(dir / "einval.h5") == bytes_of(dir / "sec2.h5"));
+  CHECK(raw_values(dir / "einval.h5") == raw_values(dir / "sec2.h5"));
 }
 
 TEST_CASE("the direct-write driver splits a write into a page-cache head, whole direct blocks and a tail", "[io][direct]") {
