@@ -101,8 +101,6 @@ void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, s
   }
 }
 
-// A compressed chunk's buffer is aligned for the direct writes of the file driver (direct_write_driver.h): a chunk
-// written from it goes to the disk without a copy into the page cache. Uninitialised (written before it is read).
 // A thread's deflater (ISA-L's level buffer, 0.3 MB) and shuffled chunk, grown as needed and kept from group to
 // group: made per group, they were page-faulted in again and again.
 struct ThreadBuffers {
@@ -188,7 +186,8 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       }
       // The shuffled chunk's byte planes (one of a chunk that is not shuffled), an element's value one row earlier
       // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
-      // before it is read).
+      // before it is read; aligned for the file driver's direct writes, direct_write_driver.h, so the chunk goes to
+      // the disk without a copy into the page cache).
       int status = 0;
       group.packed[k] = aligned_bytes(out_bytes);
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
