@@ -82,6 +82,15 @@ int lock_folder(const fs::path& folder, bool create) {
   throw IoError(folder.string() + ": cannot lock the checkpoint folder (it keeps being removed)");
 }
 
+// Empties the checkpoint folder `folder`, its state first: a run killed part-way leaves either the whole
+// checkpoint or a folder without a state (which --resume takes for no checkpoint), never a state naming a crowd
+// copy already removed (the order of a directory's entries is the file system's).
+void clear_folder(const fs::path& folder) {
+  std::error_code ec;
+  fs::remove(folder / "state.json", ec);
+  for (const auto& entry : fs::directory_iterator(folder, ec)) fs::remove_all(entry.path(), ec);
+}
+
 // `path` as it is now (size and modification time), for a KeptFile.
 PipelineCheckpoint::KeptFile stamp_of(const fs::path& path) {
   PipelineCheckpoint::KeptFile kept{path};
@@ -156,7 +165,8 @@ fs::path PipelineCheckpoint::crowd_path(std::size_t index) const {
 
 void PipelineCheckpoint::remove_folder() {
   std::error_code ec;
-  fs::remove_all(folder_, ec);
+  clear_folder(folder_);
+  fs::remove(folder_, ec);
   fs::remove(folder_.parent_path(), ec);  // only when empty: other jobs' checkpoints stay
 }
 
@@ -189,7 +199,7 @@ std::string PipelineCheckpoint::take_folder() {
   std::error_code ec;
   const fs::path state_path = folder_ / "state.json";
   if (!resume_) {
-    for (const auto& entry : fs::directory_iterator(folder_, ec)) fs::remove_all(entry.path(), ec);
+    clear_folder(folder_);
     return {};
   }
   if (!fs::exists(state_path, ec)) {
@@ -243,6 +253,14 @@ std::optional<RestoredPipeline> PipelineCheckpoint::parse_state(const std::strin
       if (speaks) context_.info("run: " + job_ + ": finished in the run being resumed");
       done_ = r.done;
       written_ = r.written;
+      return r;
+    }
+    if (r.done == steps_) {
+      // Every step was done and the run stopped before it removed its checkpoint: nothing is left to run, so no
+      // kept crowd is read (the removal may have taken some of them).
+      done_ = r.done;
+      written_ = r.written;
+      if (speaks) context_.info("run: " + job_ + ": every step was done in the run being resumed");
       return r;
     }
     for (const auto& [index, file] : state.at("files").items()) {

@@ -24,7 +24,9 @@
 // The state is written when the run starts and after each step (naming the next step as under way). Every file is
 // written atomically (AtomicOutput), after the step's own output: a run killed at any point leaves
 // the previous state or the new one, and a step killed between its output and its record is simply run again
-// (it writes the same bits). A crowd round-trips a crowd file exactly, so a restored crowd is the crowd in memory.
+// (it writes the same bits). A checkpoint is emptied state first, so a state never names a crowd copy already
+// removed; a state with every step done restores no crowd (nothing is left to run). A crowd round-trips a crowd
+// file exactly, so a restored crowd is the crowd in memory.
 //
 // The fingerprint ties a checkpoint to what the run computes: the program version, the job as loaded (with
 // --set), the seed, the number of MPI ranks of a pipeline run by every rank, and the bytes of every step's `job:`

@@ -117,6 +117,44 @@ TEST_CASE("a pipeline killed during a step and resumed writes the same bits with
   }
 }
 
+TEST_CASE("a run killed while it removes its finished checkpoint resumes to an end with the same bits") {
+  // Killed (kill_at_unlink.c, preloaded) as the last step is done and its checkpoint goes: at the removal of its
+  // state, the first thing removed, the whole checkpoint is left and the resumed run has nothing to do; at the
+  // removal of step 1's crowd copy the state is already gone and the resumed run starts over. A state left naming
+  // a removed copy (the order of a folder's entries is the file system's) made the resumed run fail to read it.
+  const auto dir = test::scratch_dir("cli_resume_removal");
+  write_inputs(dir);
+  const auto job = write_pipeline(dir);
+  const std::vector<std::string> outputs{"b.h5", "c.h5", "d.svg"};
+  fs::create_directories(dir / "reference");
+  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  for (const std::string removed : {"state.json", "step-1.h5"}) {
+    INFO("killed at the removal of " << removed);
+    const auto folder = dir / ("killed-removing-" + removed);
+    fs::create_directories(folder);
+    const std::string killer = std::string("THRONG_TEST_KILL_AT_UNLINK=") + removed + " LD_PRELOAD=" + THRONG_KILL_AT_UNLINK_LIBRARY + " ";
+    REQUIRE(test::run_command("cd " + folder.string() + " && " + killer + test::command("run " + job.string()) +
+                              " >out.txt 2>err.txt; test $? -eq 137") == 0);
+    REQUIRE(fs::is_directory(folder / ".throng-resume"));
+    const fs::path checkpoint = fs::directory_iterator(folder / ".throng-resume")->path();  // the job's one folder
+    REQUIRE(fs::exists(checkpoint / "step-1.h5"));
+    CHECK(fs::exists(checkpoint / "state.json") == (removed == "state.json"));
+    check_same_files(dir / "reference", folder, outputs);
+
+    REQUIRE(run_in(folder, "run --resume " + job.string()) == 0);
+    const std::string log = read_bytes(folder / "err.txt");
+    INFO(log);
+    if (removed == "state.json") {
+      CHECK_THAT(log, Contains("every step was done in the run being resumed"));
+      CHECK(log.find("step 1/4 edit") == std::string::npos);  // nothing ran again
+    } else {
+      CHECK_THAT(log, Contains("no checkpoint") && Contains("starting from the first step"));
+    }
+    check_same_files(dir / "reference", folder, outputs);
+    CHECK_FALSE(fs::exists(folder / ".throng-resume"));
+  }
+}
+
 TEST_CASE("a second run of a job under way leaves the first's checkpoint alone and resuming it meanwhile is refused") {
   const auto dir = test::scratch_dir("cli_resume_concurrent");
   write_inputs(dir);
