@@ -85,9 +85,10 @@ int lock_folder(const fs::path& folder, bool create) {
 // Empties the checkpoint folder `folder`, its state first: a run killed part-way leaves either the whole
 // checkpoint or a folder without a state (which --resume takes for no checkpoint), never a state naming a crowd
 // copy already removed (the order of a directory's entries is the file system's).
+// A state that cannot be removed (a permission, an I/O error) leaves the copies it names where they are.
 void clear_folder(const fs::path& folder) {
   std::error_code ec;
-  fs::remove(folder / "state.json", ec);
+  if (!fs::remove(folder / "state.json", ec) && ec && ec != std::errc::no_such_file_or_directory) return;
   for (const auto& entry : fs::directory_iterator(folder, ec)) fs::remove_all(entry.path(), ec);
 }
 
@@ -136,7 +137,8 @@ void remove_checkpoints(const CheckpointOptions& options, const std::vector<fs::
     }
     if (fd < 0) continue;  // none, or another run of the job holds it
     std::error_code ec;
-    fs::remove_all(folder, ec);
+    clear_folder(folder);
+    fs::remove(folder, ec);
     ::close(fd);
   }
   std::error_code ec;
