@@ -265,7 +265,7 @@ TEST_CASE("collide: 1 and 2 MPI ranks give the same bits, and only rank 0 writes
   const auto input = write_crowd(dir, collide::scenes::narrow_opening(19, 2.4, 300));
   REQUIRE(run("--quiet collide " + input.string() + " -o " + (dir / "one.h5").string()) == 0);
   std::string out;
-  REQUIRE(test::run_command(mpiexec + " -n 2 " + test::throng_program().string() + " --json --quiet collide " +
+  REQUIRE(test::run_command(mpiexec + " -n 2 --oversubscribe " + test::throng_program().string() + " --json --quiet collide " +
                                 input.string() + " -o " + (dir / "two.h5").string(),
                             &out) == 0);
   INFO(out);

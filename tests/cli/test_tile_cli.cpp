@@ -116,7 +116,7 @@ TEST_CASE("the same seed gives the same tiling file for 1 and 2 MPI ranks", "[mp
   write_file(dir / "job.yaml", std::string(small_job) + "chains: 3\n");
   const std::string job = (dir / "job.yaml").string();
   REQUIRE(run("--quiet tile " + job + " -o " + (dir / "one.h5").string()) == 0);
-  REQUIRE(test::run_command(mpiexec + " -n 2 " + test::throng_program().string() + " --quiet tile " + job + " -o " +
+  REQUIRE(test::run_command(mpiexec + " -n 2 --oversubscribe " + test::throng_program().string() + " --quiet tile " + job + " -o " +
                             (dir / "two.h5").string()) == 0);
   CHECK(same_bits(numbers(dir / "one.h5"), numbers(dir / "two.h5")));
 }
