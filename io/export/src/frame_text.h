@@ -34,11 +34,17 @@ void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents,
     std::vector<TextBuffer> pieces;
     std::size_t frames = 0;
   };
+  // Blocks enough for a full staging buffer and two more: while the writer waits for the disk to take a staged
+  // 8 MiB, the formatting goes on into free blocks. (With 3 it stopped for most of each such write: csv of 10,000
+  // agents × 1,000 frames 2.20-2.45 s against 1.88-2.01 s, usd 1.16-1.27 s against 1.02-1.06 s.)
+  // (A block of one frame larger than the staging buffer: 3 blocks, as many frames.)
+  const std::size_t block_estimate = per_block * frame_bytes;
+  const std::size_t depth = 2 + (OutputFile::stage_bytes + block_estimate - 1) / block_estimate;
   BlockStream<Block> stream([&file](Block& block) {
     for (std::size_t k = 0; k < block.frames * pieces_per_frame; ++k) {
       if (block.pieces[k].size()) file.write(block.pieces[k].data(), block.pieces[k].size());
     }
-  });
+  }, depth);
   for (std::size_t t0 = 0; t0 < frames; t0 += per_block) {
     const std::size_t count = std::min(per_block, frames - t0);
     Block& block = stream.next();

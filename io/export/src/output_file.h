@@ -42,10 +42,12 @@ class OutputFile {
   /// Bytes written straight to the disk so far (0 for a small file, Direct::never, or a file system that refuses).
   [[nodiscard]] std::size_t direct_bytes() const noexcept { return direct_bytes_; }
 
- private:
   /// The staging buffer's size: a multiple of every block size O_DIRECT asks (512 or 4,096 bytes), and so is every
-  /// offset a full buffer is written at.
+  /// offset a full buffer is written at. A write() that fills it waits for the disk to take it all (8 ms or more
+  /// here): a caller that makes its bytes on other threads keeps them busy meanwhile with that much buffered.
   static constexpr std::size_t stage_bytes = 8 << 20;
+
+ private:
   static constexpr std::size_t stage_alignment = 4096;
 
   // Makes the staging buffer hold at least `needed` bytes (up to stage_bytes), keeping what it holds: it starts
