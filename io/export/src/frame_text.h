@@ -1,8 +1,8 @@
 // Frame-major text (a row or a list item per agent and frame) streamed in blocks of frames: each block is
 // formatted in parallel over fixed agent ranges, each range into its own buffer per frame, while the block
 // before it is written (BlockStream). The file gets, frame by frame, head(t), the ranges' text in range order,
-// tail(t): the same bytes whatever the thread count. A block holds about block_bytes of text, so the memory held
-// is a few blocks, never the crowd.
+// tail(t): the same bytes whatever the thread count. A block holds about block_bytes, and the blocks that exist
+// at once about the output file's staging buffer and two blocks more (frame_text_layout), never the crowd.
 #pragma once
 
 #include "agent_ranges.h"
@@ -21,30 +21,48 @@ struct FrameTextOptions {
   std::size_t block_bytes = 1 << 20;    ///< text per block (at least one frame)
 };
 
+/// Pieces of a frame's text: its head, one per agent range, its tail.
+inline constexpr std::size_t pieces_per_frame = agent_ranges + 2;
+
+/// How a frame-major text is streamed: frames per block, and how many blocks exist at once.
+struct FrameTextLayout {
+  std::size_t frames_per_block = 1;
+  std::size_t depth = 2;
+};
+
+/// The layout for `frames` frames of `agents` agents. A frame's memory is counted as its text (the estimate)
+/// and a first allocation for each of its pieces, so a block holds about options.block_bytes whatever the
+/// crowd's shape (a frame of one agent's text still allocates its pieces). Depth: blocks enough for the output
+/// file's full staging buffer and two more, so that while the writer waits for the disk to take a staged 8 MiB
+/// the formatting goes on into free blocks (with 3 blocks it stopped for most of each such write:
+/// docs/commands/export.md, "Blocks to cover a staged write"); never more than the export has, at least 2.
+inline FrameTextLayout frame_text_layout(std::size_t frames, std::size_t agents, const FrameTextOptions& options) {
+  const std::size_t frame_bytes = std::max<std::size_t>(1, agents * options.bytes_per_agent) + pieces_per_frame * TextBuffer::first_capacity;
+  FrameTextLayout layout;
+  layout.frames_per_block = std::clamp<std::size_t>(options.block_bytes / frame_bytes, 1, std::max<std::size_t>(frames, 1));
+  const std::size_t block_bytes = layout.frames_per_block * frame_bytes;
+  const std::size_t blocks = (frames + layout.frames_per_block - 1) / layout.frames_per_block;
+  layout.depth = std::max<std::size_t>(2, std::min(blocks, 2 + (OutputFile::stage_bytes + block_bytes - 1) / block_bytes));
+  return layout;
+}
+
 /// head(t, TextBuffer&) and tail(t, TextBuffer&) run on the calling thread; item(t, n, TextBuffer&) runs in
 /// parallel, each agent range walking its agents' frames in increasing order (AgentPoses' contract), and must
 /// touch only the state of agent n.
 template <class Head, class Item, class Tail>
 void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents, const FrameTextOptions& options, Head head,
                        Item item, Tail tail) {
-  const std::size_t frame_bytes = std::max<std::size_t>(1, agents * options.bytes_per_agent);
-  const std::size_t per_block = std::clamp<std::size_t>(options.block_bytes / frame_bytes, 1, std::max<std::size_t>(frames, 1));
-  constexpr std::size_t pieces_per_frame = agent_ranges + 2;  // head, the ranges, tail
+  const FrameTextLayout layout = frame_text_layout(frames, agents, options);
+  const std::size_t per_block = layout.frames_per_block;
   struct Block {
     std::vector<TextBuffer> pieces;
     std::size_t frames = 0;
   };
-  // Blocks enough for a full staging buffer and two more: while the writer waits for the disk to take a staged
-  // 8 MiB, the formatting goes on into free blocks. (With 3 it stopped for most of each such write: csv of 10,000
-  // agents × 1,000 frames 2.20-2.45 s against 1.88-2.01 s, usd 1.16-1.27 s against 1.02-1.06 s.)
-  // (A block of one frame larger than the staging buffer: 3 blocks, as many frames.)
-  const std::size_t block_estimate = per_block * frame_bytes;
-  const std::size_t depth = 2 + (OutputFile::stage_bytes + block_estimate - 1) / block_estimate;
   BlockStream<Block> stream([&file](Block& block) {
     for (std::size_t k = 0; k < block.frames * pieces_per_frame; ++k) {
       if (block.pieces[k].size()) file.write(block.pieces[k].data(), block.pieces[k].size());
     }
-  }, depth);
+  }, layout.depth);
   for (std::size_t t0 = 0; t0 < frames; t0 += per_block) {
     const std::size_t count = std::min(per_block, frames - t0);
     Block& block = stream.next();

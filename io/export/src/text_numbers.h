@@ -49,6 +49,9 @@ void append_number(std::string& out, Number value) {
 /// stops allocating (and touching fresh pages) after its first fill.
 class TextBuffer {
  public:
+  /// The first allocation of a buffer that gets text (it doubles from there).
+  static constexpr std::size_t first_capacity = 4096;
+
   [[nodiscard]] char* room(std::size_t more) {
     if (size_ + more > capacity_) grow(size_ + more);
     return data_.get() + size_;
@@ -62,7 +65,7 @@ class TextBuffer {
 
  private:
   void grow(std::size_t needed) {
-    std::size_t capacity = capacity_ ? capacity_ : 4096;
+    std::size_t capacity = capacity_ ? capacity_ : first_capacity;
     while (capacity < needed) capacity *= 2;
     std::unique_ptr<char[]> data(new char[capacity]);
     if (size_) std::memcpy(data.get(), data_.get(), size_);
