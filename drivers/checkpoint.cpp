@@ -245,6 +245,8 @@ std::optional<RestoredPipeline> PipelineCheckpoint::parse_state(const std::strin
     r.done = state.at("done").get<std::size_t>();
     r.written = state.at("written").get<std::size_t>();
     if (r.done > steps_) throw damaged("more steps done than the job has");
+    done_ = r.done;
+    written_ = r.written;
     if (const auto& running = state.at("running"); !running.is_null() && speaks) {
       context_.info("run: " + job_ + ": the run being resumed stopped during step " + std::to_string(running.get<std::size_t>()) +
                     "/" + std::to_string(steps_) + " on rank " + std::to_string(state.at("rank").get<int>()) + " (pid " +
@@ -253,15 +255,11 @@ std::optional<RestoredPipeline> PipelineCheckpoint::parse_state(const std::strin
     if (state.contains("report")) {
       r.report = state.at("report");
       if (speaks) context_.info("run: " + job_ + ": finished in the run being resumed");
-      done_ = r.done;
-      written_ = r.written;
       return r;
     }
     if (r.done == steps_) {
       // Every step was done and the run stopped before it removed its checkpoint: nothing is left to run, so no
       // kept crowd is read (the removal may have taken some of them).
-      done_ = r.done;
-      written_ = r.written;
       if (speaks) context_.info("run: " + job_ + ": every step was done in the run being resumed");
       return r;
     }
@@ -300,8 +298,6 @@ std::optional<RestoredPipeline> PipelineCheckpoint::parse_state(const std::strin
       last_ = last.get<std::size_t>();
       r.last = crowd_of(*last_);
     }
-    done_ = r.done;
-    written_ = r.written;
     if (speaks) {
       context_.info("run: " + job_ + ": resuming after step " + std::to_string(r.done) + "/" + std::to_string(steps_) +
                     " (checkpoint " + folder_.string() + ")");

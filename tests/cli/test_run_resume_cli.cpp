@@ -78,15 +78,24 @@ void check_same_files(const fs::path& a, const fs::path& b, const std::vector<st
   }
 }
 
+// The pipeline's outputs (write_pipeline).
+const std::vector<std::string> pipeline_outputs{"b.h5", "c.h5", "d.svg"};
+
+// The inputs and the pipeline written in `dir`, and the pipeline run once, uninterrupted, in dir/reference: the
+// bits every interrupted run must end with. Returns the job.
+fs::path pipeline_with_reference(const fs::path& dir) {
+  write_inputs(dir);
+  const auto job = write_pipeline(dir);
+  fs::create_directories(dir / "reference");
+  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  return job;
+}
+
 }  // namespace
 
 TEST_CASE("a pipeline killed during a step and resumed writes the same bits without running the finished steps again") {
   const auto dir = test::scratch_dir("cli_resume_pipeline");
-  write_inputs(dir);
-  const auto job = write_pipeline(dir);
-  const std::vector<std::string> outputs{"b.h5", "c.h5", "d.svg"};
-  fs::create_directories(dir / "reference");
-  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  const auto job = pipeline_with_reference(dir);
   CHECK_FALSE(fs::exists(dir / "reference" / ".throng-resume"));  // a finished run leaves no checkpoint
 
   // Killed (SIGKILL: nothing of the program runs) while step 2 is under way: step 1 is done and checkpointed.
@@ -100,7 +109,7 @@ TEST_CASE("a pipeline killed during a step and resumed writes the same bits with
   CHECK_THAT(log, Contains("stopped during step 2/4 on rank 0") && Contains("resuming after step 1/4"));
   CHECK_FALSE(log.find("step 1/4 edit") != std::string::npos);  // step 1 was not run again
   CHECK_THAT(log, Contains("step 2/4 edit: wrote b.h5"));
-  check_same_files(dir / "reference", killed, outputs);
+  check_same_files(dir / "reference", killed, pipeline_outputs);
   CHECK_FALSE(fs::exists(killed / ".throng-resume"));
 
   // Killed at other points (before the first checkpoint, as step 1, 3 or 4 starts): the resumed run always ends with
@@ -113,7 +122,7 @@ TEST_CASE("a pipeline killed during a step and resumed writes the same bits with
     CHECK((status == 137 || status == 0));
     REQUIRE(run_in(folder, "run --resume " + job.string()) == 0);
     INFO("killed at " << (points[p].empty() ? "0.02 s" : points[p]) << ": " << read_bytes(folder / "err.txt"));
-    check_same_files(dir / "reference", folder, outputs);
+    check_same_files(dir / "reference", folder, pipeline_outputs);
   }
 }
 
@@ -123,11 +132,7 @@ TEST_CASE("a run killed while it removes its finished checkpoint resumes to an e
   // removal of step 1's crowd copy the state is already gone and the resumed run starts over. A state left naming
   // a removed copy (the order of a folder's entries is the file system's) made the resumed run fail to read it.
   const auto dir = test::scratch_dir("cli_resume_removal");
-  write_inputs(dir);
-  const auto job = write_pipeline(dir);
-  const std::vector<std::string> outputs{"b.h5", "c.h5", "d.svg"};
-  fs::create_directories(dir / "reference");
-  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  const auto job = pipeline_with_reference(dir);
   for (const std::string removed : {"state.json", "step-1.h5"}) {
     INFO("killed at the removal of " << removed);
     const auto folder = dir / ("killed-removing-" + removed);
@@ -141,7 +146,7 @@ TEST_CASE("a run killed while it removes its finished checkpoint resumes to an e
     const fs::path checkpoint = fs::directory_iterator(folder / ".throng-resume")->path();  // the job's one folder
     REQUIRE(fs::exists(checkpoint / "step-1.h5"));
     CHECK(fs::exists(checkpoint / "state.json") == (removed == "state.json"));
-    check_same_files(dir / "reference", folder, outputs);
+    check_same_files(dir / "reference", folder, pipeline_outputs);
 
     REQUIRE(run_in(folder, "run --resume " + job.string()) == 0);
     const std::string log = read_bytes(folder / "err.txt");
@@ -152,17 +157,14 @@ TEST_CASE("a run killed while it removes its finished checkpoint resumes to an e
     } else {
       CHECK_THAT(log, Contains("no checkpoint") && Contains("starting from the first step"));
     }
-    check_same_files(dir / "reference", folder, outputs);
+    check_same_files(dir / "reference", folder, pipeline_outputs);
     CHECK_FALSE(fs::exists(folder / ".throng-resume"));
   }
 }
 
 TEST_CASE("a second run of a job under way leaves the first's checkpoint alone and resuming it meanwhile is refused") {
   const auto dir = test::scratch_dir("cli_resume_concurrent");
-  write_inputs(dir);
-  const auto job = write_pipeline(dir);
-  fs::create_directories(dir / "reference");
-  REQUIRE(run_in(dir / "reference", "run " + job.string()) == 0);
+  const auto job = pipeline_with_reference(dir);
 
   // The first run is stopped (SIGSTOP: it holds its checkpoint's lock) during step 2; a second run of the job in the
   // same folder runs without a checkpoint, and a --resume meanwhile is refused (exit 2); then the first is killed.
@@ -187,7 +189,7 @@ TEST_CASE("a second run of a job under way leaves the first's checkpoint alone a
   REQUIRE(run_in(work, "run --resume " + job.string()) == 0);
   INFO(read_bytes(work / "err.txt"));
   CHECK_THAT(read_bytes(work / "err.txt"), Contains("resuming after step 1/4"));
-  check_same_files(dir / "reference", work, {"b.h5", "c.h5", "d.svg"});
+  check_same_files(dir / "reference", work, pipeline_outputs);
   CHECK_FALSE(fs::exists(work / ".throng-resume"));
 }
 
@@ -388,7 +390,7 @@ TEST_CASE("one pipeline run by 2 MPI ranks, stopped and resumed by 2 ranks, writ
   INFO(log);
   // (mpiexec passes the signal on a moment later: the ranks may have finished step 2 by then.)
   CHECK_THAT(log, Contains("resuming after step 1/4") || Contains("resuming after step 2/4"));
-  check_same_files(dir / "reference", work, {"b.h5", "c.h5", "d.svg"});
+  check_same_files(dir / "reference", work, pipeline_outputs);
   CHECK_FALSE(fs::exists(work / ".throng-resume"));
 
   // Another number of ranks computes another run: refused (exit 2) rather than mixed.
