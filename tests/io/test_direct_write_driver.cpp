@@ -6,6 +6,7 @@
 #include <throng/io/hdf5.h>
 
 #include "direct_write_driver.h"
+#include "direct_writes.h"
 
 #include <catch2/catch.hpp>
 
@@ -95,19 +96,9 @@ std::string bytes_of(const std::filesystem::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Whether `folder`'s file system takes O_DIRECT writes: one aligned block written through a descriptor opened with
-// it (ext4 does; tmpfs before Linux 6.6 refuses the open, some file systems the write).
+// Whether `folder`'s file system takes O_DIRECT writes, warning where it does not.
 bool takes_direct_io(const std::filesystem::path& folder) {
-  const auto probe = folder / "direct_probe";
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT | O_CLOEXEC, 0644);
-  bool written = false;
-  if (fd >= 0) {
-    const h5::detail::AlignedBytes block = h5::detail::aligned_bytes(direct_write_block);
-    std::memset(block.get(), 7, direct_write_block);
-    written = ::pwrite(fd, block.get(), direct_write_block, 0) == static_cast<ssize_t>(direct_write_block);
-    ::close(fd);
-  }
-  std::filesystem::remove(probe);
+  const bool written = test::takes_direct_writes(folder);
   if (!written) WARN(folder.string() << ": its file system refuses O_DIRECT writes; only the page-cache path is checked here");
   return written;
 }

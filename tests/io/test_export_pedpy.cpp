@@ -1,6 +1,8 @@
 // The PedPy / Pedestrian Dynamics Data Archive layout checked with h5py (and shapely for the walkable area) the way
 // PedPy's loaders read it: /trajectory with the columns id, frame, x, y (and z, ox, oy) and an fps attribute,
 // wkt_geometry at the root; every row against the crowd file it came from.
+#include "direct_write_driver.h"
+#include "direct_writes.h"
 #include "test_export_fixtures.h"
 #include "test_paths.h"
 
@@ -8,8 +10,11 @@
 #include <throng/io/export/pedpy.h>
 
 #include <catch2/catch.hpp>
+#include <hdf5.h>
 
+#include <cstdint>
 #include <fstream>
+#include <vector>
 
 using namespace throng;
 
@@ -99,4 +104,59 @@ TEST_CASE("pedpy: a crowd whose frames are not evenly spaced is refused, leaving
   CHECK_THROWS_AS(export_pedpy(crowd, dir / "out.h5"), InputError);
   CHECK_THROWS_WITH(export_pedpy(crowd, dir / "out.h5"), Catch::Contains("not evenly spaced"));
   CHECK(test::files_in(dir).empty());
+}
+
+TEST_CASE("pedpy: whole chunks of rows go straight to the disk, and every row reads back in order") {
+  // 1,000 agents × 140 frames: 140,000 rows, two whole chunks of 65,536 rows (3,670,016 bytes each) and a last
+  // one of 8,928 (under the driver's 1 MiB minimum, so through the page cache). Without the aligned rows, or with
+  // libhdf5 filling each new chunk through its cache first (a fill value), nothing went straight to the disk.
+  const auto dir = test::scratch_dir("export_pedpy_direct");
+  constexpr std::size_t T = 140, N = 1000;
+  CrowdFile crowd;
+  CrowdMotion& m = crowd.motion;
+  m = CrowdMotion::with_shape(T, N);
+  for (std::size_t n = 0; n < N; ++n) {
+    m.ids[n] = static_cast<std::int64_t>(5 * n + 3);
+    m.radii[n] = 0.25;
+    m.species[n] = 0;
+  }
+  for (std::size_t t = 0; t < T; ++t) {
+    m.times[t] = 0.1 * static_cast<double>(t);
+    for (std::size_t n = 0; n < N; ++n) m.position(t, n) = Eigen::Vector3d(0.01 * t + n, 0.5 * n, 0.0);
+  }
+  crowd.provenance.program_version = "test";
+  const bool direct = test::takes_direct_writes(dir);
+  INFO("the scratch folder's file system takes O_DIRECT: " << direct);
+  const std::size_t before = h5::detail::direct_write_bytes();
+  export_pedpy(crowd, dir / "out.h5");
+  CHECK(h5::detail::direct_write_bytes() - before == (direct ? 2 * 3670016 : 0));
+
+  struct Row {
+    std::int64_t frame, id;
+    double x, y, z, ox, oy;
+  };
+  const hid_t file = H5Fopen((dir / "out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const hid_t set = H5Dopen2(file, "/trajectory", H5P_DEFAULT);
+  const hid_t type = H5Tcreate(H5T_COMPOUND, sizeof(Row));
+  H5Tinsert(type, "frame", HOFFSET(Row, frame), H5T_NATIVE_INT64);
+  H5Tinsert(type, "id", HOFFSET(Row, id), H5T_NATIVE_INT64);
+  H5Tinsert(type, "x", HOFFSET(Row, x), H5T_NATIVE_DOUBLE);
+  H5Tinsert(type, "y", HOFFSET(Row, y), H5T_NATIVE_DOUBLE);
+  std::vector<Row> rows(T * N + 1);
+  const hid_t space = H5Dget_space(set);
+  CHECK(H5Sget_simple_extent_npoints(space) == static_cast<hssize_t>(T * N));
+  CHECK(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()) >= 0);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Dclose(set);
+  H5Fclose(file);
+  std::size_t wrong = 0;
+  for (std::size_t t = 0; t < T; ++t) {
+    for (std::size_t n = 0; n < N; ++n) {
+      const Row& r = rows[t * N + n];
+      if (r.frame != static_cast<std::int64_t>(t) || r.id != m.ids[n] || r.x != m.position(t, n).x() || r.y != m.position(t, n).y()) ++wrong;
+    }
+  }
+  CHECK(wrong == 0);
 }

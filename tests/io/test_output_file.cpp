@@ -2,13 +2,11 @@
 // staging buffer, straight to the disk where the file system allows (full buffers) and through the page cache
 // otherwise (the tail, or Direct::never: a file system that refuses O_DIRECT), come back exactly; the target is
 // replaced only by commit.
+#include "direct_writes.h"
 #include "output_file.h"
 #include "test_paths.h"
 
 #include <catch2/catch.hpp>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -37,23 +35,6 @@ std::string pattern(std::size_t size) {
   return bytes;
 }
 
-// Whether the folder's file system takes O_DIRECT writes of 4,096 aligned bytes.
-bool takes_direct_writes(const std::filesystem::path& folder) {
-  const auto probe = folder / "direct_probe";
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_DIRECT | O_CLOEXEC, 0644);
-  bool ok = false;
-  if (fd >= 0) {
-    void* block = nullptr;
-    if (::posix_memalign(&block, 4096, 4096) == 0) {
-      ok = ::write(fd, block, 4096) == 4096;
-      std::free(block);
-    }
-    ::close(fd);
-  }
-  std::filesystem::remove(probe);
-  return ok;
-}
-
 }  // namespace
 
 TEST_CASE("an output file gets back exactly the bytes written in pieces of any size, directly or through the page cache") {
@@ -61,7 +42,7 @@ TEST_CASE("an output file gets back exactly the bytes written in pieces of any s
   // 2.5 staging buffers' worth and a tail, in pieces that straddle the buffer's end in every way.
   const std::string bytes = pattern((20 << 20) + 12345);
   const std::vector<std::size_t> pieces{1, 4095, 4096, 4097, (8 << 20) - 1, 3, 8 << 20, 100000};
-  const bool direct_possible = takes_direct_writes(dir);
+  const bool direct_possible = test::takes_direct_writes(dir);
   if (!direct_possible) WARN("the scratch folder's file system refuses O_DIRECT: both cases take the page cache path");
   for (const auto direct : {detail::OutputFile::Direct::when_allowed, detail::OutputFile::Direct::never}) {
     const bool when_allowed = direct == detail::OutputFile::Direct::when_allowed;
