@@ -4,7 +4,8 @@
 // Cases: export_<format>/<agents>/<frames> writes the crowd held in memory (read once beforehand, the way a
 // pipeline step hands its crowd on) to a file; xdmf_from_file reads only the .h5's layout; read_crowd is the read
 // the path entry points add (peak_heap_MB there is the reader's: it holds the file's arrays and the crowd's at
-// once); derive_facing the default facing alone (PathFacing); cat_<format> copies that format's output with
+// once); derive_facing the default facing alone (PathFacing::at, value by value), derive_facing_by_frame the same
+// a frame at a time (PathFacing::at_frame, as the exporters ask it); cat_<format> copies that format's output with
 // `cat` over its last copy, cat_durable_<format> the way the export writes (into a new file, flushed to disk,
 // renamed onto the last copy), write_durable_<format> writes the same bytes from memory that way (see cat() and
 // write_durable() for why all three). Every timed region starts after a sync (settle()). Counters: MB (output size),
@@ -253,6 +254,22 @@ void derive_facing(benchmark::State& s) {
     s.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
 }
+// The same a frame at a time (PathFacing::at_frame, as the exporters ask it): the same values.
+void derive_facing_by_frame(benchmark::State& s) {
+  const CrowdFile& f = crowd(static_cast<std::size_t>(s.range(0)), static_cast<std::size_t>(s.range(1)));
+  std::vector<Eigen::Quaterniond> row(f.motion.agent_count());
+  for (auto _ : s) {
+    const auto start = std::chrono::steady_clock::now();
+    PathFacing facing(f.motion);
+    double sum = 0;
+    for (std::size_t t = 0; t < f.motion.frame_count(); ++t) {
+      facing.at_frame(t, 0, f.motion.agent_count(), row.data());
+      for (const Eigen::Quaterniond& q : row) sum += q.w();
+    }
+    benchmark::DoNotOptimize(sum);
+    s.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+}
 void cat_csv(benchmark::State& s) { cat(s, ".csv", false); }
 void cat_gltf(benchmark::State& s) { cat(s, ".glb", false); }
 void cat_usd(benchmark::State& s) { cat(s, ".usda", false); }
@@ -286,5 +303,6 @@ BENCHMARK(write_durable_csv) THRONG_EXPORT_SIZES;
 BENCHMARK(xdmf_from_file) THRONG_EXPORT_SIZES;
 BENCHMARK(read_crowd) THRONG_EXPORT_SIZES;
 BENCHMARK(derive_facing) THRONG_EXPORT_SIZES;
+BENCHMARK(derive_facing_by_frame) THRONG_EXPORT_SIZES;
 
 }  // namespace

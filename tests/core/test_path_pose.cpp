@@ -6,6 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
 
 using namespace throng;
 
@@ -131,6 +134,133 @@ TEST_CASE("PathFacing gives the same facings in any query order") {
   }
   // An agent absent for a while keeps the facing it had when it left.
   CHECK(expected[3 * 15 + 2].coeffs() == expected[3 * 9 + 2].coeffs());
+}
+
+namespace {
+
+// Runs the same queries through at() agent by agent (the reference) and through at_frame(t, n0, n1); counts the
+// coefficients that differ in any bit.
+struct FacingPair {
+  PathFacing reference, batched;
+  std::vector<Eigen::Quaterniond> row;
+  std::size_t differ = 0, compared = 0;
+  FacingPair(const CrowdMotion& m, const PathPoseRule& rule) : reference(m, rule), batched(m, rule), row(m.agent_count()) {}
+  void compare(std::size_t t, std::size_t n0, std::size_t n1) {
+    batched.at_frame(t, n0, n1, row.data());
+    for (std::size_t n = n0; n < n1; ++n) {
+      const Eigen::Vector4d a = reference.at(t, n).coeffs(), b = row[n - n0].coeffs();
+      for (int c = 0; c < 4; ++c) differ += std::memcmp(&a[c], &b[c], sizeof(double)) != 0;
+      ++compared;
+    }
+  }
+};
+
+std::vector<PathPoseRule> standing_rules() {
+  std::vector<PathPoseRule> rules;
+  for (const double standing : {0.3, 1e-200, 0.0, -1.0, std::nan("")}) rules.push_back({standing, 2.0});
+  return rules;
+}
+
+}  // namespace
+
+TEST_CASE("PathFacing::at_frame gives at()'s facings bit for bit, over ranges, in any order") {
+  // 150 agents (more than one batch of 64) over 30 frames: walking every way (both half-planes, straight back
+  // along −x, standing, slower than the standing speed), absent for a while, present at one frame alone, climbing
+  // (a vertical component), crawling at 1e-130 m/s (below facing_along's direct range) and flying at 1e130 m/s
+  // (above it); with given velocities of either sign, some vertical, some NaN. Standing speeds 0.3, tiny, 0,
+  // negative and NaN. Ranges of odd and even lengths (the two-at-a-time path and its tail), walked frame by frame,
+  // backwards, and skipping frames.
+  constexpr std::size_t T = 30, N = 150;
+  CrowdMotion m = CrowdMotion::with_shape(T, N);
+  for (std::size_t t = 0; t < T; ++t) m.times[t] = 0.04 * static_cast<double>(t) + 0.001 * static_cast<double>(t % 4);
+  for (std::size_t n = 0; n < N; ++n) {
+    const double heading = 2 * pi * static_cast<double>(n) / 37.0 - pi;
+    for (std::size_t t = 0; t < T; ++t) {
+      if (n % 11 == 3 && t >= 8 && t < 14) continue;       // absent for a while
+      if (n % 13 == 5 && t != 12) continue;                // present at one frame alone
+      double speed = 0.2 + 0.05 * static_cast<double>(n % 40);  // some below the standing speed
+      if (n % 17 == 0 && t > 10 && t < 20) speed = 0;      // stops
+      if (n == 7) speed = 1e-130;
+      if (n == 8) speed = 1e130;
+      const double along = speed * m.times[t];
+      const double climb = n % 19 == 4 ? 0.3 * m.times[t] : 0.0;
+      const double turn = n % 2 ? 0.4 * m.times[t] : 0.0;
+      m.position(t, n) = Eigen::Vector3d(static_cast<double>(n) + along * std::cos(heading + turn), along * std::sin(heading + turn), climb);
+    }
+  }
+  m.position(5, 9) = Eigen::Vector3d(9.0, 0.0, 0.0);  // agent 9 at frame 6 walks straight back along −x
+  m.position(6, 9) = Eigen::Vector3d(8.9, 0.0, 0.0);
+  m.position(7, 9) = Eigen::Vector3d(8.8, 0.0, 0.0);
+  CrowdMotion with_velocities = m;
+  with_velocities.velocities.assign(m.positions.size(), 0.0);
+  for (std::size_t i = 0; i < with_velocities.velocities.size(); ++i) {
+    const double v = (0.05 + 0.01 * static_cast<double>(i % 97)) * (i % 5 < 2 ? -1.0 : 1.0);
+    with_velocities.velocities[i] = i % 11 == 0 ? std::nan("") : i % 3 == 2 ? (i % 23 == 2 ? v : 0.0) : v;
+  }
+  for (const CrowdMotion* motion : {&m, &with_velocities}) {
+    for (const PathPoseRule& rule : standing_rules()) {
+      INFO((motion == &m ? "from positions" : "given velocities") << ", standing speed " << rule.standing_speed);
+      FacingPair frames(*motion, rule), odd(*motion, rule), single(*motion, rule), replayed(*motion, rule);
+      for (std::size_t t = 0; t < T; ++t) {
+        frames.compare(t, 0, N);    // all agents: two batches of 64 and 22
+        odd.compare(t, 0, 67);      // odd lengths: the tail of the two-at-a-time pass
+        odd.compare(t, 67, N);
+        single.compare(t, 1, 2);    // one agent, continuing its state every frame
+      }
+      for (std::size_t t = T; t-- > 20;) replayed.compare(t, 30, 101);  // backwards: every value replayed
+      for (std::size_t t = 3; t < T; t += 5) replayed.compare(t, 1, 2);   // skipping frames
+      for (const FacingPair* pair : {&frames, &odd, &single, &replayed}) CHECK(pair->differ == 0);
+      CHECK(frames.compared == T * N);
+    }
+  }
+}
+
+TEST_CASE("PathFacing::at_frame gives at()'s facings bit for bit on random crowds and random queries") {
+  // Steps of random size over 280 orders of magnitude and either sign, some exactly zero (±0 differences), climbs
+  // that are 0, subnormal (their velocity may underflow to 0) or ordinary; agents absent at random; given
+  // velocities the same way with NaNs. Queries: random ranges at frames mostly in order, sometimes going back.
+  std::mt19937_64 random(20261207);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const auto magnitude = [&] { return std::pow(10.0, -140.0 + 280.0 * unit(random)) * (unit(random) < 0.5 ? -1.0 : 1.0); };
+  const auto step = [&] {
+    const double u = unit(random);
+    return u < 0.1 ? 0.0 : u < 0.15 ? -0.0 : u < 0.6 ? (unit(random) - 0.5) : magnitude();
+  };
+  const auto climb = [&] {
+    const double u = unit(random);
+    return u < 0.7 ? 0.0 : u < 0.85 ? 5e-324 * std::floor(1 + 3 * unit(random)) : step();
+  };
+  constexpr std::size_t T = 24, N = 101;
+  for (int crowd = 0; crowd < 4; ++crowd) {
+    CrowdMotion m = CrowdMotion::with_shape(T, N);
+    for (std::size_t t = 0; t < T; ++t) m.times[t] = 0.1 * static_cast<double>(t) + (crowd % 2 ? 1e3 : 0.0);
+    for (std::size_t n = 0; n < N; ++n) {
+      Eigen::Vector3d p(unit(random), unit(random), 0.0);
+      for (std::size_t t = 0; t < T; ++t) {
+        p += Eigen::Vector3d(step(), step(), climb());
+        if (!p.allFinite()) p = Eigen::Vector3d(unit(random), unit(random), 0.0);
+        if (unit(random) < 0.1) continue;  // absent
+        m.position(t, n) = p;
+      }
+    }
+    if (crowd >= 2) {
+      m.velocities.resize(m.positions.size());
+      for (double& v : m.velocities) v = unit(random) < 0.1 ? std::nan("") : unit(random) < 0.3 ? step() : 0.0 + magnitude() * (unit(random) < 0.5);
+    }
+    for (const PathPoseRule& rule : standing_rules()) {
+      INFO("crowd " << crowd << ", standing speed " << rule.standing_speed);
+      FacingPair pair(m, rule);
+      std::size_t t = 0;
+      for (int query = 0; query < 600; ++query) {
+        const double u = unit(random);
+        t = u < 0.05 ? static_cast<std::size_t>(unit(random) * T) : u < 0.6 ? std::min(T - 1, t + 1) : t;
+        const std::size_t n0 = static_cast<std::size_t>(unit(random) * N);
+        const std::size_t n1 = std::min(N, n0 + 1 + static_cast<std::size_t>(unit(random) * 80));
+        pair.compare(t, n0, n1);
+      }
+      CHECK(pair.differ == 0);
+    }
+  }
 }
 
 TEST_CASE("validate rejects broken orientations and actions with a message naming them") {

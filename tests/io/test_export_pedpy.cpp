@@ -143,6 +143,9 @@ TEST_CASE("pedpy: whole chunks of rows go straight to the disk, and every row re
   H5Tinsert(type, "id", HOFFSET(Row, id), H5T_NATIVE_INT64);
   H5Tinsert(type, "x", HOFFSET(Row, x), H5T_NATIVE_DOUBLE);
   H5Tinsert(type, "y", HOFFSET(Row, y), H5T_NATIVE_DOUBLE);
+  H5Tinsert(type, "z", HOFFSET(Row, z), H5T_NATIVE_DOUBLE);
+  H5Tinsert(type, "ox", HOFFSET(Row, ox), H5T_NATIVE_DOUBLE);
+  H5Tinsert(type, "oy", HOFFSET(Row, oy), H5T_NATIVE_DOUBLE);
   std::vector<Row> rows(T * N + 1);
   const hid_t space = H5Dget_space(set);
   CHECK(H5Sget_simple_extent_npoints(space) == static_cast<hssize_t>(T * N));
@@ -155,7 +158,11 @@ TEST_CASE("pedpy: whole chunks of rows go straight to the disk, and every row re
   for (std::size_t t = 0; t < T; ++t) {
     for (std::size_t n = 0; n < N; ++n) {
       const Row& r = rows[t * N + n];
-      if (r.frame != static_cast<std::int64_t>(t) || r.id != m.ids[n] || r.x != m.position(t, n).x() || r.y != m.position(t, n).y()) ++wrong;
+      // Every agent creeps at 0.1 m/s, below the standing speed: it never walks, so it faces +x (1, 0).
+      if (r.frame != static_cast<std::int64_t>(t) || r.id != m.ids[n] || r.x != m.position(t, n).x() || r.y != m.position(t, n).y() ||
+          r.z != 0.0 || r.ox != 1.0 || r.oy != 0.0) {
+        ++wrong;
+      }
     }
   }
   CHECK(wrong == 0);

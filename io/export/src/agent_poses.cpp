@@ -39,6 +39,11 @@ Eigen::Quaterniond AgentPoses::facing(std::size_t t, std::size_t n) {
   return held_facing_[n];
 }
 
+void AgentPoses::facings(std::size_t t, std::size_t first, std::size_t last, Eigen::Quaterniond* out) {
+  if (!facing_given()) return derived_.at_frame(t, first, last, out);
+  for (std::size_t n = first; n < last; ++n) out[n - first] = facing(t, n);
+}
+
 std::int32_t AgentPoses::action(std::size_t t, std::size_t n) const {
   if (!actions_given()) return path_action(motion_, t, n, rule_);
   return motion_.present(t, n) ? motion_.action(t, n) : -1;

@@ -24,6 +24,9 @@ class AgentPoses {
   [[nodiscard]] Eigen::Vector3d position(std::size_t t, std::size_t n);
   /// Unit quaternion (body frame forward +x, left +y, up +z): stored (held where absent) or derived.
   [[nodiscard]] Eigen::Quaterniond facing(std::size_t t, std::size_t n);
+  /// facing(t, n) for every agent n in [first, last), into out[0 .. last − first); derived facings a range at a
+  /// time (PathFacing::at_frame: half the time of asking them one by one).
+  void facings(std::size_t t, std::size_t first, std::size_t last, Eigen::Quaterniond* out);
   /// Index into action_table(): stored (−1 where absent) or derived from the speed.
   [[nodiscard]] std::int32_t action(std::size_t t, std::size_t n) const;
 

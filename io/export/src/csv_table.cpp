@@ -75,12 +75,14 @@ void write_rows(const CrowdFile& crowd, detail::OutputFile& file, const ExportOp
   }
   // Room for one row: the constant parts, 8 numbers and their commas.
   const std::size_t row_room = constants.longest + 64 + 8 * (detail::max_number_chars + 1);
+  // A frame's facings a range of agents at a time (AgentPoses::facings), each range into its own agents' slots.
+  std::vector<Eigen::Quaterniond> facings(m.agent_count());
   detail::stream_frame_text(
       file, m.frame_count(), m.agent_count(), {.bytes_per_agent = 120}, [](std::size_t, detail::TextBuffer&) {},
       [&](std::size_t t, std::size_t n, detail::TextBuffer& out) {
         if (!poses.present(t, n)) return;
         const Eigen::Vector3d position = poses.position(t, n);
-        const Eigen::Quaterniond facing = poses.facing(t, n);
+        const Eigen::Quaterniond& facing = facings[n];
         const std::string& action = constants.action[static_cast<std::size_t>(poses.action(t, n))];
         char* p = out.room(row_room + frame_head[t].size());
         p = detail::put_text(p, frame_head[t]);
@@ -100,7 +102,8 @@ void write_rows(const CrowdFile& crowd, detail::OutputFile& file, const ExportOp
         p = detail::put_text(p, constants.agent_tail[n]);
         out.advance(p);
       },
-      [](std::size_t, detail::TextBuffer&) {});
+      [](std::size_t, detail::TextBuffer&) {},
+      [&](std::size_t t, std::size_t n0, std::size_t n1) { poses.facings(t, n0, n1, facings.data() + n0); });
 }
 
 void write_obstacles(const CrowdFile& crowd, detail::OutputFile& file) {

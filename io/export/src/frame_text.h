@@ -48,10 +48,11 @@ inline FrameTextLayout frame_text_layout(std::size_t frames, std::size_t agents,
 
 /// head(t, TextBuffer&) and tail(t, TextBuffer&) run on the calling thread; item(t, n, TextBuffer&) runs in
 /// parallel, each agent range walking its agents' frames in increasing order (AgentPoses' contract), and must
-/// touch only the state of agent n.
-template <class Head, class Item, class Tail>
+/// touch only the state of agent n; before(t, n0, n1) runs on a range's thread before its items of frame t
+/// (agents [n0, n1)), for work done a range at a time (AgentPoses::facings), and must touch only those agents' state.
+template <class Head, class Item, class Tail, class Before>
 void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents, const FrameTextOptions& options, Head head,
-                       Item item, Tail tail) {
+                       Item item, Tail tail, Before before) {
   const FrameTextLayout layout = frame_text_layout(frames, agents, options);
   const std::size_t per_block = layout.frames_per_block;
   struct Block {
@@ -76,12 +77,20 @@ void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents,
     for_agent_ranges(agents, [&](std::size_t r, std::size_t n0, std::size_t n1) {
       for (std::size_t f = 0; f < count; ++f) {
         TextBuffer& piece = block.pieces[f * pieces_per_frame + 1 + r];
+        before(t0 + f, n0, n1);
         for (std::size_t n = n0; n < n1; ++n) item(t0 + f, n, piece);
       }
     });
     stream.submit();
   }
   stream.finish();
+}
+
+/// The same without work a range at a time.
+template <class Head, class Item, class Tail>
+void stream_frame_text(OutputFile& file, std::size_t frames, std::size_t agents, const FrameTextOptions& options, Head head,
+                       Item item, Tail tail) {
+  stream_frame_text(file, frames, agents, options, head, item, tail, [](std::size_t, std::size_t, std::size_t) {});
 }
 
 }  // namespace throng::detail

@@ -153,14 +153,16 @@ void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& 
     block.frames = count;
     if (block.parts.size() < count * ranges) block.parts.resize(count * ranges);
     detail::for_agent_ranges(N, [&](std::size_t r, std::size_t n0, std::size_t n1) {
+      std::vector<Eigen::Quaterniond> facing(n1 - n0);
       for (std::size_t f = 0; f < count; ++f) {
         std::vector<Row>& part = block.parts[f * ranges + r];
         part.clear();
         const std::size_t t = t0 + f;
+        poses.facings(t, n0, n1, facing.data());  // every agent's, so that an agent's frames are asked in order
         for (std::size_t n = n0; n < n1; ++n) {
           if (!m.present(t, n)) continue;
           const Eigen::Vector3d p = m.position(t, n);
-          const auto [ox, oy] = ground_facing(poses.facing(t, n));
+          const auto [ox, oy] = ground_facing(facing[n - n0]);
           part.push_back({static_cast<std::int64_t>(t), m.ids[n], p.x(), p.y(), p.z(), ox, oy});
         }
       }

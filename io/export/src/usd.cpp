@@ -86,20 +86,26 @@ class UsdWriter {
       *c++ = ')';
       out.advance(c);
     });
-    time_samples("quath[] orientations", 32, [&](detail::AgentPoses& poses, std::size_t t, std::size_t n, detail::TextBuffer& out) {
-      const Eigen::Quaterniond q = poses.facing(t, n);
-      char* c = out.room(12 + 4 * detail::max_number_chars);
-      c = open_tuple(c, n);
-      c = detail::put_half(c, q.w());
-      c = detail::put_text(c, ", ");
-      c = detail::put_half(c, q.x());
-      c = detail::put_text(c, ", ");
-      c = detail::put_half(c, q.y());
-      c = detail::put_text(c, ", ");
-      c = detail::put_half(c, q.z());
-      *c++ = ')';
-      out.advance(c);
-    });
+    // A frame's facings a range of agents at a time (AgentPoses::facings), each range into its own agents' slots.
+    std::vector<Eigen::Quaterniond> facing(m_.agent_count());
+    time_samples(
+        "quath[] orientations", 32,
+        [&](detail::AgentPoses&, std::size_t, std::size_t n, detail::TextBuffer& out) {
+          const Eigen::Quaterniond& q = facing[n];
+          char* c = out.room(12 + 4 * detail::max_number_chars);
+          c = open_tuple(c, n);
+          c = detail::put_half(c, q.w());
+          c = detail::put_text(c, ", ");
+          c = detail::put_half(c, q.x());
+          c = detail::put_text(c, ", ");
+          c = detail::put_half(c, q.y());
+          c = detail::put_text(c, ", ");
+          c = detail::put_half(c, q.z());
+          *c++ = ')';
+          out.advance(c);
+        },
+        [](std::size_t, detail::TextBuffer&) {},
+        [&](detail::AgentPoses& poses, std::size_t t, std::size_t n0, std::size_t n1) { poses.facings(t, n0, n1, facing.data() + n0); });
     // The ids of the absent agents: few, listed by the frame's head (one pass over presence, no per-agent text).
     time_samples(
         "int64[] invisibleIds", 0, [](detail::AgentPoses&, std::size_t, std::size_t, detail::TextBuffer&) {},
@@ -200,9 +206,12 @@ class UsdWriter {
   // `declaration`.timeSamples = { code: [values], ... }, one line per frame, streamed (detail::stream_frame_text):
   // item(poses, t, n, out) writes agent n's value at frame t (its own separator first), in parallel over agent
   // ranges, each pass with its own pose stream; head(t, out) may write the frame's values itself.
-  template <class Item, class Head = void (*)(std::size_t, detail::TextBuffer&)>
+  // before(poses, t, n0, n1) runs before a range's items of frame t (detail::stream_frame_text).
+  template <class Item, class Head = void (*)(std::size_t, detail::TextBuffer&),
+            class Before = void (*)(detail::AgentPoses&, std::size_t, std::size_t, std::size_t)>
   void time_samples(const std::string& declaration, std::size_t bytes_per_agent, Item item,
-                    Head head = [](std::size_t, detail::TextBuffer&) {}) {
+                    Head head = [](std::size_t, detail::TextBuffer&) {},
+                    Before before = [](detail::AgentPoses&, std::size_t, std::size_t, std::size_t) {}) {
     detail::AgentPoses poses(m_, options_.pose);
     write_text("        " + declaration + ".timeSamples = {\n");
     detail::stream_frame_text(
@@ -214,7 +223,8 @@ class UsdWriter {
           head(t, out);
         },
         [&](std::size_t t, std::size_t n, detail::TextBuffer& out) { item(poses, t, n, out); },
-        [](std::size_t, detail::TextBuffer& out) { out.append("],\n"); });
+        [](std::size_t, detail::TextBuffer& out) { out.append("],\n"); },
+        [&](std::size_t t, std::size_t n0, std::size_t n1) { before(poses, t, n0, n1); });
     text_ += "        }\n";
   }
 

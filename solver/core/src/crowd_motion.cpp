@@ -1,6 +1,10 @@
 #include <throng/core/crowd_motion.h>
 #include <throng/core/errors.h>
 
+#include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <cmath>
 #include <set>
 #include <string>
@@ -213,6 +217,119 @@ Eigen::Quaterniond PathFacing::at(std::size_t t, std::size_t n) {
   if (const auto f = moving_facing(t, n)) last_[n] = *f;
   next_[n] = t + 1;
   return last_[n];
+}
+
+namespace {
+
+// facing_along's ground case for `count` velocities (num_x / den, num_y / den): w and z of the yaw quaternion,
+// whether the speed is at least `standing` (moving: !(speed < standing), as PathFacing's rule) and whether it lies
+// in facing_along's direct range (else its value must come from facing_along itself). v.norm() and
+// ground_length(x, y) are both sqrt(x² + y²) there (z is 0). Two agents at a time in SSE2 registers where the
+// processor has them: the square roots and divisions, most of the time, run two at once, and every operation is
+// the scalar one (IEEE-exact), so the values are facing_along's bit for bit.
+void ground_facings(const double* num_x, const double* num_y, const double* den, std::size_t count, double standing,
+                    double* w, double* z, unsigned char* moving, unsigned char* in_range) {
+  std::size_t k = 0;
+#if defined(__SSE2__)
+  const __m128d sign_bit = _mm_set1_pd(-0.0), one = _mm_set1_pd(1.0), minus_one = _mm_set1_pd(-1.0), zero = _mm_setzero_pd();
+  const __m128d low = _mm_set1_pd(0x1p-400), high = _mm_set1_pd(0x1p400), slow = _mm_set1_pd(standing);
+  const auto select = [](__m128d mask, __m128d a, __m128d b) { return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b)); };
+  for (; k + 2 <= count; k += 2) {
+    const __m128d d = _mm_loadu_pd(den + k);
+    const __m128d x = _mm_div_pd(_mm_loadu_pd(num_x + k), d), y = _mm_div_pd(_mm_loadu_pd(num_y + k), d);
+    const __m128d ground = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(x, x), _mm_mul_pd(y, y)));
+    const int range = _mm_movemask_pd(_mm_and_pd(_mm_cmpge_pd(ground, low), _mm_cmple_pd(ground, high)));
+    const int move = _mm_movemask_pd(_mm_cmpnlt_pd(ground, slow));
+    const __m128d h = _mm_add_pd(ground, _mm_andnot_pd(sign_bit, x));
+    const __m128d sign = select(_mm_cmplt_pd(y, zero), minus_one, one);
+    const __m128d ahead = _mm_cmpge_pd(x, zero);
+    const __m128d a = select(ahead, h, _mm_andnot_pd(sign_bit, y)), b = select(ahead, y, _mm_mul_pd(sign, h));
+    const __m128d inverse = _mm_div_pd(one, _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(h, h), _mm_mul_pd(y, y))));
+    _mm_storeu_pd(w + k, _mm_mul_pd(a, inverse));
+    _mm_storeu_pd(z + k, _mm_mul_pd(b, inverse));
+    moving[k] = move & 1, moving[k + 1] = (move >> 1) & 1;
+    in_range[k] = range & 1, in_range[k + 1] = (range >> 1) & 1;
+  }
+#endif
+  for (; k < count; ++k) {
+    const double x = num_x[k] / den[k], y = num_y[k] / den[k];
+    const double ground = std::sqrt(x * x + y * y);
+    in_range[k] = ground >= 0x1p-400 && ground <= 0x1p400;
+    moving[k] = !(ground < standing);
+    const double h = ground + std::abs(x);
+    const double sign = y < 0 ? -1.0 : 1.0;
+    const bool ahead = x >= 0;
+    const double a = ahead ? h : std::abs(y), b = ahead ? y : sign * h;
+    const double inverse = 1.0 / std::sqrt(h * h + y * y);
+    w[k] = a * inverse;
+    z[k] = b * inverse;
+  }
+}
+
+}  // namespace
+
+void PathFacing::at_frame(std::size_t t, std::size_t first, std::size_t last, Eigen::Quaterniond* out) {
+  // Batches of agents in three passes: their velocities as path_velocity has them (a difference of positions and
+  // the time between, or the given velocity over 1), then facing_along's ground case for all of them
+  // (ground_facings), then the state update. What the ground case does not cover (a first or replayed frame, no
+  // velocity, a vertical component, a speed outside facing_along's direct range) goes through at(): the same
+  // values either way, bit for bit.
+  constexpr std::size_t batch = 64;
+  const CrowdMotion& m = motion_;
+  const std::size_t T = m.frame_count();
+  const bool given = !m.velocities.empty();
+  double num_x[batch], num_y[batch], den[batch], w[batch], z[batch];
+  unsigned char ground[batch], moving[batch], in_range[batch];
+  // The positions the next frame's call reads last (frame t + 2's): a caller that walks a few agents through
+  // every frame (the glTF export) strides a whole frame from one call to the next, where the processor's own
+  // prefetching does not follow, and waited on memory for most of its time here (a glTF export of 10,000 agents ×
+  // 1,000 frames: 0.35-0.36 -> 0.29-0.30 s). Not for long ranges: a caller walking whole frames reads memory in
+  // order, which the processor prefetches itself (a frame of 10,000 agents: 5 % slower with these).
+  if (t + 2 < T && last > first && last - first <= 1024) {
+    const auto* from = reinterpret_cast<const char*>(m.positions.data() + m.index(t + 2, first));
+    const auto* to = reinterpret_cast<const char*>(m.positions.data() + m.index(t + 2, last));
+    for (; from < to; from += 64) __builtin_prefetch(from);
+  }
+  for (std::size_t b0 = first; b0 < last; b0 += batch) {
+    const std::size_t count = std::min(batch, last - b0);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t n = b0 + k;
+      ground[k] = 0;
+      num_x[k] = num_y[k] = 0.0;
+      den[k] = 1.0;
+      if (next_[n] != t || !m.present(t, n)) continue;
+      if (given) {
+        const double* g = m.velocities.data() + m.index(t, n);
+        if (std::isfinite(g[0]) && std::isfinite(g[1]) && std::isfinite(g[2])) {
+          num_x[k] = g[0], num_y[k] = g[1];  // over 1: exactly the given velocity
+          ground[k] = g[2] == 0.0;
+          continue;
+        }
+      }
+      const bool before = t > 0 && m.present(t - 1, n);
+      const bool after = t + 1 < T && m.present(t + 1, n);
+      if (!before && !after) continue;
+      const std::size_t a = before ? t - 1 : t, b = after ? t + 1 : t;
+      const double dt = m.times[b] - m.times[a];
+      const double* pa = m.positions.data() + m.index(a, n);
+      const double* pb = m.positions.data() + m.index(b, n);
+      const double climb = pb[2] - pa[2];
+      ground[k] = climb == 0.0 || climb / dt == 0.0;  // path_velocity's z, 0 (an underflow too: facing_along's test)
+      num_x[k] = pb[0] - pa[0], num_y[k] = pb[1] - pa[1];
+      den[k] = dt;
+    }
+    ground_facings(num_x, num_y, den, count, rule_.standing_speed, w, z, moving, in_range);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t n = b0 + k;
+      if (!ground[k] || !in_range[k]) {
+        out[n - first] = at(t, n);
+        continue;
+      }
+      if (moving[k]) last_[n] = Eigen::Quaterniond(w[k], 0.0, 0.0, z[k]);
+      next_[n] = t + 1;
+      out[n - first] = last_[n];
+    }
+  }
 }
 
 }  // namespace throng

@@ -152,6 +152,10 @@ class PathFacing {
  public:
   explicit PathFacing(const CrowdMotion& motion, PathPoseRule rule = {});
   [[nodiscard]] Eigen::Quaterniond at(std::size_t frame, std::size_t agent);
+  /// at(frame, n) for every agent n in [first, last), in order, into out[0 .. last − first): the same values and
+  /// state, computed a range at a time so that the agents' square roots and divisions overlap (one value at a time
+  /// they wait on each other: 23 ns a value on this machine, most of a glTF export's CPU).
+  void at_frame(std::size_t frame, std::size_t first, std::size_t last, Eigen::Quaterniond* out);
 
  private:
   [[nodiscard]] std::optional<Eigen::Quaterniond> moving_facing(std::size_t frame, std::size_t agent) const;
