@@ -245,7 +245,7 @@ TEST_CASE("PathFacing::at_frame gives at()'s facings bit for bit on random crowd
     }
     if (crowd >= 2) {
       m.velocities.resize(m.positions.size());
-      for (double& v : m.velocities) v = unit(random) < 0.1 ? std::nan("") : unit(random) < 0.3 ? step() : 0.0 + magnitude() * (unit(random) < 0.5);
+      for (double& v : m.velocities) v = unit(random) < 0.1 ? std::nan("") : unit(random) < 0.3 ? step() : unit(random) < 0.5 ? magnitude() : 0.0;
     }
     for (const PathPoseRule& rule : standing_rules()) {
       INFO("crowd " << crowd << ", standing speed " << rule.standing_speed);

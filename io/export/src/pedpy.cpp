@@ -1,6 +1,7 @@
 #include "agent_poses.h"
 #include "agent_ranges.h"
 #include "block_stream.h"
+#include "direct_write_driver.h"
 #include "frame_rate.h"
 #include "walkable_area.h"
 
@@ -13,8 +14,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
-#include <new>
 #include <optional>
 #include <string>
 #include <utility>
@@ -30,22 +29,21 @@ struct Row {
   double x, y, z, ox, oy;
 };
 
-constexpr hsize_t chunk_rows = 1 << 16;  // rows per chunk and per write (3.5 MiB, a whole number of 4 KiB blocks)
+constexpr hsize_t chunk_rows = 1 << 16;  // rows per chunk and per write (3.5 MiB)
 
-// A chunk's rows, gathered in a buffer aligned to 4 KiB. The file's chunks of 1 MiB or more start on 4 KiB
-// boundaries (h5::File::create's file driver, io/src/direct_write_driver.h), so a whole chunk written from here
-// goes straight to the disk (O_DIRECT) instead of through the page cache: the kernel's copy into new page-cache
-// pages was 38 % of an export's samples, and on this virtual machine new pages are a first touch of guest memory
-// each (an export of 10,000 agents × 1,000 frames took 0.63-0.70 s, or 1.6-2.3 s when those pages were slow;
-// 0.38-0.43 s so; docs/commands/export.md).
-constexpr std::size_t row_block = 4096;
-static_assert(chunk_rows * sizeof(Row) % row_block == 0, "whole chunks are whole 4 KiB blocks");
+// A chunk's rows, gathered in a buffer aligned as the file driver's direct writes need (io/src/direct_write_driver.h).
+// The file's chunks of at least its minimum start on its block boundaries (h5::File::create uses that driver), so
+// a whole chunk written from here goes straight to the disk (O_DIRECT) instead of through the page cache: the
+// kernel's copy into new page-cache pages was 38 % of an export's samples, and on this virtual machine new pages
+// are a first touch of guest memory each (an export of 10,000 agents × 1,000 frames took 0.63-0.70 s, or 1.6-2.3 s
+// when those pages were slow; 0.38-0.43 s so; docs/commands/export.md).
+constexpr std::size_t chunk_bytes = chunk_rows * sizeof(Row);
+static_assert(chunk_bytes % h5::detail::direct_write_block == 0 && chunk_bytes >= h5::detail::direct_write_minimum,
+              "a whole chunk is whole blocks of a direct write, and large enough to go direct");
 struct ChunkRows {
-  struct Delete {
-    void operator()(Row* p) const noexcept { ::operator delete[](p, std::align_val_t{row_block}); }
-  };
-  std::unique_ptr<Row[], Delete> rows{static_cast<Row*>(::operator new[](chunk_rows * sizeof(Row), std::align_val_t{row_block}))};
+  h5::detail::AlignedBytes bytes = h5::detail::aligned_bytes(chunk_bytes);
   std::size_t count = 0;
+  [[nodiscard]] Row* rows() noexcept { return reinterpret_cast<Row*>(bytes.get()); }
 };
 
 h5::Handle row_type() {
@@ -136,11 +134,11 @@ void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& 
       std::size_t done = 0;
       while (done < part.size()) {
         const std::size_t take = std::min(chunk - carry.count, part.size() - done);
-        std::copy_n(part.data() + done, take, carry.rows.get() + carry.count);
+        std::copy_n(part.data() + done, take, carry.rows() + carry.count);
         carry.count += take;
         done += take;
         if (carry.count == chunk) {
-          trajectory.append(carry.rows.get(), chunk);
+          trajectory.append(carry.rows(), chunk);
           carry.count = 0;
         }
       }
@@ -170,7 +168,7 @@ void stream_rows(const CrowdMotion& m, const ExportOptions& options, RowWriter& 
     stream.submit();
   }
   stream.finish();
-  trajectory.append(carry.rows.get(), carry.count);
+  trajectory.append(carry.rows(), carry.count);
 }
 
 void write_pedpy(const CrowdFile& crowd, const std::filesystem::path& output, AtomicOutput& atomic,
