@@ -188,6 +188,34 @@ std::size_t ChunkDeflater::run_isal(const unsigned char* in, std::size_t bytes, 
   return stream.total_out;
 }
 
+std::size_t ChunkDeflater::zeros_stream(const unsigned char* zeros, std::size_t bytes, unsigned char* out,
+                                        std::size_t out_bytes, int* status) {
+  if (zero_bytes_ != bytes || zero_stream_.empty()) {
+    std::vector<unsigned char> made_here;
+    if (zeros == nullptr) {
+      made_here.assign(bytes, 0);
+      zeros = made_here.data();
+    }
+    const std::size_t made = run_isal(zeros, bytes, true, true, out, out_bytes, status);
+    if (made == 0) return 0;
+    zero_stream_.assign(out, out + made);
+    zero_bytes_ = bytes;
+    return made;
+  }
+  std::memcpy(out, zero_stream_.data(), zero_stream_.size());
+  return zero_stream_.size();
+}
+
+std::size_t ChunkDeflater::deflate_zeros(std::size_t bytes, unsigned char* out, std::size_t out_bytes, int* status) {
+  *status = 0;
+  if (bytes > std::numeric_limits<std::uint32_t>::max() || out_bytes < bound(bytes, 1)) {
+    throw std::logic_error("ChunkDeflater: a chunk of " + std::to_string(bytes) + " bytes needs " +
+                           std::to_string(bound(bytes, 1)) + " bytes of room within ISA-L's 32-bit sizes, not " +
+                           std::to_string(out_bytes));
+  }
+  return zeros_stream(nullptr, bytes, out, out_bytes, status);
+}
+
 std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
                                    std::size_t row_elements, unsigned char* out, std::size_t out_bytes, int* status) {
   *status = 0;
@@ -196,17 +224,7 @@ std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes
                            std::to_string(bound(bytes, planes)) + " bytes of room within ISA-L's 32-bit sizes, not " +
                            std::to_string(out_bytes));
   }
-  if (all_zero(chunk, bytes)) {
-    if (zero_bytes_ != bytes || zero_stream_.empty()) {
-      const std::size_t made = run_isal(chunk, bytes, true, true, out, out_bytes, status);
-      if (made == 0) return 0;
-      zero_stream_.assign(out, out + made);
-      zero_bytes_ = bytes;
-      return made;
-    }
-    std::memcpy(out, zero_stream_.data(), zero_stream_.size());
-    return zero_stream_.size();
-  }
+  if (all_zero(chunk, bytes)) return zeros_stream(chunk, bytes, out, out_bytes, status);
   constexpr std::size_t most_planes = 16;
   std::array<bool, most_planes> noise{};
   bool any_noise = false;

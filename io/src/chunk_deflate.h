@@ -49,11 +49,20 @@ class ChunkDeflater {
   std::size_t deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements,
                       unsigned char* out, std::size_t out_bytes, int* status);
 
+  /// What deflate() writes for a chunk of `bytes` zero bytes (whatever its planes), without the chunk: for a caller
+  /// that knows it is zeros before gathering it. The same failures as deflate().
+  std::size_t deflate_zeros(std::size_t bytes, unsigned char* out, std::size_t out_bytes, int* status);
+
  private:
   // One ISA-L call: a raw deflate (zlib = false: no header, no trailer; its last block final when `last`, else
   // ending on a byte boundary) or a whole zlib stream. Returns the bytes written, 0 on failure (*status set).
   std::size_t run_isal(const unsigned char* in, std::size_t bytes, bool zlib, bool last, unsigned char* out,
                        std::size_t out_bytes, int* status);
+
+  // The zlib stream of `bytes` zero bytes, from zero_stream_ when it is that size's, else made by ISA-L from
+  // `zeros` (`bytes` zero bytes; null: made here) and kept.
+  std::size_t zeros_stream(const unsigned char* zeros, std::size_t bytes, unsigned char* out, std::size_t out_bytes,
+                           int* status);
 
   int level_;
   std::size_t level_bytes_;

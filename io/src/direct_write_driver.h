@@ -12,7 +12,10 @@
 // least direct_write_minimum bytes whose buffer and file address agree modulo direct_write_block writes its
 // whole blocks with O_DIRECT and its unaligned head and tail through the page cache; every other write, every
 // read, and every write on a file system that refuses O_DIRECT (tmpfs before Linux 6.6, some network file
-// systems: the open fails, or the first direct write with EINVAL) goes through the page cache as in sec2.
+// systems: the open fails, or the first direct write with EINVAL) goes through the page cache as in sec2. Smaller
+// raw-data writes that follow one another in the file are gathered (up to 4 MiB) and written with one call when
+// the run ends: when a write does not continue it or meets it, a read meets it, or libhdf5 flushes, truncates or
+// closes the file.
 // The file's chunk allocations of at least direct_write_minimum bytes are aligned to direct_write_block
 // (H5Pset_alignment), so a chunk compressed into an aligned buffer (filtered_chunks.cpp) goes straight through.
 // The file's bytes are right whichever way each write went: Linux writes back and drops the cached pages a direct
@@ -54,5 +57,9 @@ void use_direct_write_driver(hid_t file_access, bool direct = true);
 
 /// How many bytes the driver wrote with O_DIRECT in this process (a test's way to see the path was taken).
 [[nodiscard]] std::size_t direct_write_bytes();
+
+/// How many runs of staged raw-data writes the driver has written in this process, one call each (a test's way to
+/// see small writes that follow one another gathered).
+[[nodiscard]] std::size_t staged_runs_written();
 
 }  // namespace throng::h5::detail

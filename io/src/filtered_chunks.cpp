@@ -22,6 +22,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace throng::h5::detail {
@@ -101,12 +102,40 @@ void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, s
   }
 }
 
+// Whether the n elements of ElementSize bytes taken `stride` bytes apart from `in` are all zero bytes; it stops at
+// the first that is not (a component that varies: at once).
+template <std::size_t ElementSize>
+bool zero_elements(const unsigned char* in, std::size_t n, std::size_t stride) {
+  using Word = std::conditional_t<ElementSize == 8, std::uint64_t, std::uint32_t>;
+  static_assert(sizeof(Word) == ElementSize);
+  for (std::size_t i = 0; i < n; ++i) {
+    Word w;
+    std::memcpy(&w, in + i * stride, ElementSize);
+    if (w != 0) return false;
+  }
+  return true;
+}
+
+// The same for any element size: false for sizes throng does not write (the chunk is then gathered and checked).
+bool zero_component(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride) {
+  switch (element_size) {
+    case 8: return zero_elements<8>(in, n, stride);
+    case 4: return zero_elements<4>(in, n, stride);
+    default: return false;
+  }
+}
+
 // A thread's deflater (ISA-L's level buffer, 0.3 MB) and shuffled chunk, grown as needed and kept from group to
 // group: made per group, they were page-faulted in again and again.
 struct ThreadBuffers {
   std::unique_ptr<ChunkDeflater> deflater;
   int level = 0;
   std::vector<unsigned char> shuffled;
+  // The last single-component chunk this thread compressed, as it was before the shuffle, and its stream: a
+  // crowd's ids (and mostly its actions) are the same frame after frame, so the next chunk is often the same bytes,
+  // and the same bytes make the same stream (chunk_deflate.h). Kept for chunks up to kept_shuffled_bytes.
+  std::vector<unsigned char> last_chunk, last_stream;
+  std::size_t last_element_size = 0, last_row_elements = 0;
 };
 
 // Shuffled chunks up to this size are kept per thread (a 10,000-agent frame's component is 80 KB); larger ones
@@ -118,6 +147,7 @@ ThreadBuffers& thread_buffers(int level) {
   if (!buffers.deflater || buffers.level != level) {
     buffers.deflater = std::make_unique<ChunkDeflater>(level);
     buffers.level = level;
+    buffers.last_chunk.clear();  // its stream was made at another level
   }
   return buffers;
 }
@@ -158,6 +188,10 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     std::vector<AlignedBytes> packed;  // each out_bytes long, size[k] of them the stream
     std::vector<std::size_t> size;
   };
+  const auto not_deflated = [&](std::uint64_t chunk, int status) {
+    throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(chunk) + " (status " +
+                  std::to_string(status) + ")");
+  };
   const auto compress = [&](Group& group) {
     ThreadBuffers& buffers = thread_buffers(layout.level);
     std::unique_ptr<unsigned char[]> own;
@@ -179,6 +213,26 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
         }
         chunk = padded.data();
       }
+      // A single-component chunk equal to the thread's last one: its stream again.
+      const bool reusable = C == 1 && chunk_bytes <= kept_shuffled_bytes;
+      if (reusable && buffers.last_chunk.size() == chunk_bytes && buffers.last_element_size == layout.element_size &&
+          buffers.last_row_elements == row_elements && std::memcmp(buffers.last_chunk.data(), chunk, chunk_bytes) == 0) {
+        group.packed[k] = aligned_bytes(out_bytes);
+        std::memcpy(group.packed[k].get(), buffers.last_stream.data(), buffers.last_stream.size());
+        group.size[k] = buffers.last_stream.size();
+        continue;
+      }
+      // A component of zeros (the z of positions on the ground, the x and y of yaw quaternions: three of a sketch's
+      // seven chunks a frame) needs no gather: its stream is the same for every such chunk.
+      if (C > 1 && zero_component(chunk + component * layout.element_size, chunk_bytes / layout.element_size,
+                                  layout.element_size, C * layout.element_size)) {
+        int status = 0;
+        group.packed[k] = aligned_bytes(out_bytes);
+        group.size[k] = buffers.deflater->deflate_zeros(chunk_bytes, group.packed[k].get(), out_bytes, &status);
+        if (group.size[k] == 0) not_deflated(group.first + k, status);
+        continue;
+      }
+      const unsigned char* const raw = chunk;  // the chunk's bytes before the shuffle
       if (transposed) {
         shuffle(chunk + component * layout.element_size, chunk_bytes / layout.element_size, layout.element_size,
                 C * layout.element_size, shuffled);
@@ -186,15 +240,18 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       }
       // The shuffled chunk's byte planes (one of a chunk that is not shuffled), an element's value one row earlier
       // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
-      // before it is read; aligned for the file driver's direct writes, direct_write_driver.h, so the chunk goes to
-      // the disk without a copy into the page cache).
+      // before it is read; aligned for the file driver's direct writes, direct_write_driver.h, so a chunk of 1 MiB
+      // or more goes to the disk without a copy into the page cache).
       int status = 0;
       group.packed[k] = aligned_bytes(out_bytes);
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
                                                 group.packed[k].get(), out_bytes, &status);
-      if (group.size[k] == 0) {  // a failure, not an empty chunk
-        throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(group.first + k) +
-                      " (status " + std::to_string(status) + ")");
+      if (group.size[k] == 0) not_deflated(group.first + k, status);  // a failure, not an empty chunk
+      if (reusable) {
+        buffers.last_chunk.assign(raw, raw + chunk_bytes);
+        buffers.last_stream.assign(group.packed[k].get(), group.packed[k].get() + group.size[k]);
+        buffers.last_element_size = layout.element_size;
+        buffers.last_row_elements = row_elements;
       }
     }
   };

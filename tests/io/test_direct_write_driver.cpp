@@ -291,3 +291,48 @@ TEST_CASE("a crowd file written through the direct-write driver reads back equal
   REQUIRE(back.motion.frame_count() == crowd.motion.frame_count());
   CHECK(back.motion.positions == crowd.motion.positions);
 }
+
+TEST_CASE("the direct-write driver gathers small raw-data writes that follow one another into runs", "[io][direct]") {
+  // Through libhdf5's driver interface: 700 raw writes of 3,000 bytes one after the other, a read that meets them
+  // (it must see them: the run is written first), 1,500 more (beyond one run's 4 MiB: a second run, a third
+  // begun), a metadata write elsewhere (it leaves the run alone), a raw write over bytes of the open run (written
+  // after it, so that it wins), and a close without a flush (the last run written there). Four runs in all; the file
+  // holds exactly what was written, read back through the driver and from the disk.
+  constexpr std::size_t piece = 3000, first_pieces = 700, more_pieces = 1500;
+  constexpr haddr_t start = 5, metadata_address = start + (first_pieces + more_pieces) * piece + 10000;
+  constexpr haddr_t end = metadata_address + 512;
+  const auto dir = test::scratch_dir("direct_write_staged");
+  const auto path = dir / "staged.bin";
+  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+  h5::detail::use_direct_write_driver(access);
+  H5FD_t* file = H5FDopen(path.c_str(), H5F_ACC_RDWR | H5F_ACC_CREAT | H5F_ACC_TRUNC, access, haddr_t{1} << 40);
+  REQUIRE(file != nullptr);
+  REQUIRE(H5FDset_eoa(file, H5FD_MEM_DRAW, end) >= 0);
+  std::string expected(end, '\0');
+  std::vector<unsigned char> bytes(piece);
+  const auto put = [&](H5FD_mem_t type, haddr_t address, std::size_t size, unsigned seed) {
+    for (std::size_t i = 0; i < size; ++i) bytes[i] = static_cast<unsigned char>((i * 131 + seed) % 253);
+    REQUIRE(H5FDwrite(file, type, H5P_DEFAULT, address, size, bytes.data()) >= 0);
+    std::memcpy(expected.data() + address, bytes.data(), size);
+  };
+  const std::size_t runs_before = h5::detail::staged_runs_written();
+  const auto runs = [&] { return h5::detail::staged_runs_written() - runs_before; };
+  for (std::size_t k = 0; k < first_pieces; ++k) put(H5FD_MEM_DRAW, start + k * piece, piece, static_cast<unsigned>(k));
+  CHECK(runs() == 0);
+  std::string seen(100, '\0');
+  REQUIRE(H5FDread(file, H5FD_MEM_DRAW, H5P_DEFAULT, start + 1000, seen.size(), seen.data()) >= 0);
+  CHECK(seen == expected.substr(start + 1000, seen.size()));
+  CHECK(runs() == 1);
+  for (std::size_t k = first_pieces; k < first_pieces + more_pieces; ++k) {
+    put(H5FD_MEM_DRAW, start + k * piece, piece, static_cast<unsigned>(k));
+  }
+  CHECK(runs() == 2);  // the second run ended at 4 MiB (1,398 pieces); the third holds the other 102
+  put(H5FD_MEM_SUPER, metadata_address, 512, 77);
+  CHECK(runs() == 2);
+  put(H5FD_MEM_DRAW, start + (first_pieces + more_pieces - 10) * piece + 7, piece, 99);
+  CHECK(runs() == 3);
+  REQUIRE(H5FDclose(file) >= 0);
+  H5Pclose(access);
+  CHECK(runs() == 4);
+  CHECK(bytes_of(path) == expected);
+}

@@ -221,3 +221,41 @@ TEST_CASE("a write that fails stops the chunk writer: its error comes back, noth
   REQUIRE(all.size() == 24);
   for (std::size_t k = 0; k < 24; ++k) CHECK(all[k] == std::make_pair<std::uint64_t, std::uint64_t>(k / 3, k % 3));
 }
+
+TEST_CASE("chunks equal to the one before and components of zeros read back exactly, whatever the thread count") {
+  // Two shortcuts of the chunk writer: a single-component chunk equal to the last one a thread compressed takes its
+  // stream again, and a component that is all zeros is not gathered. Each is given chunks that differ from the ones
+  // it would take them for by one element only, at either end.
+  constexpr std::uint64_t agents = 5000;
+  std::vector<std::int64_t> ids(12 * agents);
+  for (std::uint64_t t = 0; t < 12; ++t) {
+    for (std::uint64_t a = 0; a < agents; ++a) ids[t * agents + a] = static_cast<std::int64_t>(a * 7 + 3);
+  }
+  ids[4 * agents + agents - 1] = -1;  // frames 4-7: frame 0's ids but the last
+  for (std::uint64_t t = 5; t < 8; ++t) ids[t * agents + agents - 1] = -1;
+  ids[9 * agents] = 99;  // frame 9: frame 0's but the first
+  for (std::uint64_t a = 0; a < agents; ++a) ids[10 * agents + a] = static_cast<std::int64_t>(a * a);
+  std::mt19937_64 random(8);
+  std::uniform_real_distribution<double> place(-40.0, 40.0);
+  std::vector<double> positions(6 * agents * 3, 0.0);
+  for (std::uint64_t t = 0; t < 6; ++t) {
+    for (std::uint64_t a = 0; a < agents; ++a) {
+      positions[(t * agents + a) * 3] = place(random);
+      positions[(t * agents + a) * 3 + 1] = place(random);
+    }
+  }
+  positions[(3 * agents + agents - 1) * 3 + 2] = 0.25;  // z zero in every frame but 3 (its last agent) and 4 (its first)
+  positions[(4 * agents) * 3 + 2] = -1e-300;
+  const auto dir = test::scratch_dir("io_filtered_chunks_shortcuts");
+  for (const std::size_t threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    h5::File f = h5::File::create(dir / ("shortcuts" + std::to_string(threads) + ".h5"));
+    f.root().write("ids", ids, {12, agents}, h5::Layout{true, 1});
+    f.root().write("positions", positions, {6, agents, 3}, h5::Layout{true, 1});
+    f.close();
+  }
+  CHECK(bytes_of(dir / "shortcuts1.h5") == bytes_of(dir / "shortcuts2.h5"));
+  const h5::File f = h5::File::open(dir / "shortcuts2.h5");
+  CHECK(f.root().read_int64("ids", 2).values == ids);
+  CHECK(f.root().read_doubles("positions", 3).values == positions);
+}
