@@ -35,6 +35,7 @@ struct DirectWriteSettings {
 // straight to the disk they held the writer thread for the disk's time and cost the command more (cost share
 // 0.27-0.29 against 0.25-0.28; through the page cache 0.24-0.27, paired; docs/commands/sketch.md).
 constexpr std::size_t staged_bytes_most = 4 * 1024 * 1024;
+static_assert(direct_write_minimum <= staged_bytes_most, "a write to be staged always fits an empty stage");
 
 // The driver's file: libhdf5's part first (it reads and sets those fields).
 struct DirectFile {
@@ -175,10 +176,13 @@ H5FD_t* open_file(const char* name, unsigned flags, hid_t access, haddr_t maxadd
 
 herr_t close_file(H5FD_t* f) {
   DirectFile* file = file_of(f);
-  const int unwritten = write_staged(file);  // libhdf5 flushes before it closes: nothing is staged here then
-  const int error = ::close(file->fd) == 0 ? unwritten : errno;
+  // H5Fclose of a file open for writing flushes first, so nothing is staged here then; a bare H5FDclose may
+  // leave a run, written here.
+  const int unwritten = write_staged(file);
+  const int error = ::close(file->fd) == 0 ? 0 : errno;
   if (file->direct_fd >= 0) ::close(file->direct_fd);
   delete file;
+  if (unwritten != 0) return fail(__func__, H5E_WRITEERROR, "cannot write the file", unwritten);
   return error == 0 ? 0 : fail(__func__, H5E_CANTCLOSEFILE, "cannot close the file", error);
 }
 

@@ -14,8 +14,8 @@
 // read, and every write on a file system that refuses O_DIRECT (tmpfs before Linux 6.6, some network file
 // systems: the open fails, or the first direct write with EINVAL) goes through the page cache as in sec2. Smaller
 // raw-data writes that follow one another in the file are gathered (up to 4 MiB) and written with one call when
-// the run ends: when a write does not continue it or meets it, a read meets it, or libhdf5 flushes, truncates or
-// closes the file.
+// the run ends: when a small raw-data write does not continue it, any write or read meets it, or libhdf5 flushes,
+// truncates or closes the file.
 // The file's chunk allocations of at least direct_write_minimum bytes are aligned to direct_write_block
 // (H5Pset_alignment), so a chunk compressed into an aligned buffer (filtered_chunks.cpp) goes straight through.
 // The file's bytes are right whichever way each write went: Linux writes back and drops the cached pages a direct

@@ -133,10 +133,15 @@ struct ThreadBuffers {
   std::vector<unsigned char> shuffled;
   // The last single-component chunk this thread compressed, as it was before the shuffle, and its stream: a
   // crowd's ids (and mostly its actions) are the same frame after frame, so the next chunk is often the same bytes,
-  // and the same bytes make the same stream (chunk_deflate.h). Kept for chunks up to kept_shuffled_bytes.
+  // and the same bytes make the same stream (chunk_deflate.h). Kept for chunks up to reused_chunk_bytes (the
+  // thread holds it and its stream, about twice that, for the process's life).
   std::vector<unsigned char> last_chunk, last_stream;
   std::size_t last_element_size = 0, last_row_elements = 0;
 };
+
+// Single-component chunks up to this size are kept per thread with their streams, to be reused (ThreadBuffers): a
+// chunk of 10,000 agents' ids is 240 KB, of 100,000 agents' 800 KB.
+constexpr std::size_t reused_chunk_bytes = 1024 * 1024;
 
 // Shuffled chunks up to this size are kept per thread (a 10,000-agent frame's component is 80 KB); larger ones
 // (a frame of 1,000,000 agents: 8 MB) are made per group, so that no thread keeps them for the process's life.
@@ -148,6 +153,8 @@ ThreadBuffers& thread_buffers(int level) {
     buffers.deflater = std::make_unique<ChunkDeflater>(level);
     buffers.level = level;
     buffers.last_chunk.clear();  // its stream was made at another level
+    buffers.last_stream.clear();
+    buffers.last_element_size = buffers.last_row_elements = 0;
   }
   return buffers;
 }
@@ -160,6 +167,11 @@ unsigned char* shuffled_room(ThreadBuffers& buffers, std::size_t bytes, std::uni
   }
   if (buffers.shuffled.size() < bytes) buffers.shuffled.resize(bytes);
   return buffers.shuffled.data();
+}
+
+[[noreturn]] void not_deflated(const std::string& where, std::uint64_t chunk, int status) {
+  throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(chunk) + " (status " +
+                std::to_string(status) + ")");
 }
 
 }  // namespace
@@ -188,10 +200,6 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     std::vector<AlignedBytes> packed;  // each out_bytes long, size[k] of them the stream
     std::vector<std::size_t> size;
   };
-  const auto not_deflated = [&](std::uint64_t chunk, int status) {
-    throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(chunk) + " (status " +
-                  std::to_string(status) + ")");
-  };
   const auto compress = [&](Group& group) {
     ThreadBuffers& buffers = thread_buffers(layout.level);
     std::unique_ptr<unsigned char[]> own;
@@ -214,7 +222,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
         chunk = padded.data();
       }
       // A single-component chunk equal to the thread's last one: its stream again.
-      const bool reusable = C == 1 && chunk_bytes <= kept_shuffled_bytes;
+      const bool reusable = C == 1 && chunk_bytes <= reused_chunk_bytes;
       if (reusable && buffers.last_chunk.size() == chunk_bytes && buffers.last_element_size == layout.element_size &&
           buffers.last_row_elements == row_elements && std::memcmp(buffers.last_chunk.data(), chunk, chunk_bytes) == 0) {
         group.packed[k] = aligned_bytes(out_bytes);
@@ -229,7 +237,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
         int status = 0;
         group.packed[k] = aligned_bytes(out_bytes);
         group.size[k] = buffers.deflater->deflate_zeros(chunk_bytes, group.packed[k].get(), out_bytes, &status);
-        if (group.size[k] == 0) not_deflated(group.first + k, status);
+        if (group.size[k] == 0) not_deflated(where, group.first + k, status);
         continue;
       }
       const unsigned char* const raw = chunk;  // the chunk's bytes before the shuffle
@@ -246,7 +254,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       group.packed[k] = aligned_bytes(out_bytes);
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
                                                 group.packed[k].get(), out_bytes, &status);
-      if (group.size[k] == 0) not_deflated(group.first + k, status);  // a failure, not an empty chunk
+      if (group.size[k] == 0) not_deflated(where, group.first + k, status);  // a failure, not an empty chunk
       if (reusable) {
         buffers.last_chunk.assign(raw, raw + chunk_bytes);
         buffers.last_stream.assign(group.packed[k].get(), group.packed[k].get() + group.size[k]);

@@ -296,8 +296,9 @@ TEST_CASE("the direct-write driver gathers small raw-data writes that follow one
   // Through libhdf5's driver interface: 700 raw writes of 3,000 bytes one after the other, a read that meets them
   // (it must see them: the run is written first), 1,500 more (beyond one run's 4 MiB: a second run, a third
   // begun), a metadata write elsewhere (it leaves the run alone), a raw write over bytes of the open run (written
-  // after it, so that it wins), and a close without a flush (the last run written there). Four runs in all; the file
-  // holds exactly what was written, read back through the driver and from the disk.
+  // after it, so that it wins), a metadata write inside that new run (the run written first, so that the metadata
+  // wins), one more raw write and a close without a flush (the last run written there). Five runs in all; the
+  // file holds exactly what was written.
   constexpr std::size_t piece = 3000, first_pieces = 700, more_pieces = 1500;
   constexpr haddr_t start = 5, metadata_address = start + (first_pieces + more_pieces) * piece + 10000;
   constexpr haddr_t end = metadata_address + 512;
@@ -329,10 +330,15 @@ TEST_CASE("the direct-write driver gathers small raw-data writes that follow one
   CHECK(runs() == 2);  // the second run ended at 4 MiB (1,398 pieces); the third holds the other 102
   put(H5FD_MEM_SUPER, metadata_address, 512, 77);
   CHECK(runs() == 2);
-  put(H5FD_MEM_DRAW, start + (first_pieces + more_pieces - 10) * piece + 7, piece, 99);
+  const haddr_t overwrite = start + (first_pieces + more_pieces - 10) * piece + 7;
+  put(H5FD_MEM_DRAW, overwrite, piece, 99);
   CHECK(runs() == 3);
+  CHECK(H5FDget_eof(file, H5FD_MEM_DRAW) == end);  // staged bytes count as the file's
+  put(H5FD_MEM_SUPER, overwrite + 100, 200, 55);  // a metadata write inside the open run: the run first
+  CHECK(runs() == 4);
+  put(H5FD_MEM_DRAW, overwrite + piece, piece, 101);  // a new run
   REQUIRE(H5FDclose(file) >= 0);
   H5Pclose(access);
-  CHECK(runs() == 4);
+  CHECK(runs() == 5);
   CHECK(bytes_of(path) == expected);
 }

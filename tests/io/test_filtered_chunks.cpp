@@ -14,6 +14,7 @@
 #endif
 
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -252,10 +253,17 @@ TEST_CASE("chunks equal to the one before and components of zeros read back exac
     h5::File f = h5::File::create(dir / ("shortcuts" + std::to_string(threads) + ".h5"));
     f.root().write("ids", ids, {12, agents}, h5::Layout{true, 1});
     f.root().write("positions", positions, {6, agents, 3}, h5::Layout{true, 1});
+    // The ids' bytes again as int32 pairs: the same chunks' bytes, not the same stream (4-byte planes).
+    std::vector<std::int32_t> halves(2 * ids.size());
+    std::memcpy(halves.data(), ids.data(), ids.size() * sizeof(std::int64_t));
+    f.root().write("halves", halves, {12, 2 * agents}, h5::Layout{true, 1});
     f.close();
   }
   CHECK(bytes_of(dir / "shortcuts1.h5") == bytes_of(dir / "shortcuts2.h5"));
   const h5::File f = h5::File::open(dir / "shortcuts2.h5");
   CHECK(f.root().read_int64("ids", 2).values == ids);
   CHECK(f.root().read_doubles("positions", 3).values == positions);
+  std::vector<std::int32_t> halves(2 * ids.size());
+  std::memcpy(halves.data(), ids.data(), ids.size() * sizeof(std::int64_t));
+  CHECK(f.root().read_int32("halves", 2).values == halves);
 }
