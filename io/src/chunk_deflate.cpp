@@ -188,6 +188,14 @@ std::size_t ChunkDeflater::run_isal(const unsigned char* in, std::size_t bytes, 
   return stream.total_out;
 }
 
+void ChunkDeflater::require_room(std::size_t bytes, std::size_t planes, std::size_t out_bytes) {
+  if (bytes > std::numeric_limits<std::uint32_t>::max() || out_bytes < bound(bytes, planes)) {
+    throw std::logic_error("ChunkDeflater: a chunk of " + std::to_string(bytes) + " bytes needs " +
+                           std::to_string(bound(bytes, planes)) + " bytes of room within ISA-L's 32-bit sizes, not " +
+                           std::to_string(out_bytes));
+  }
+}
+
 std::size_t ChunkDeflater::zeros_stream(const unsigned char* zeros, std::size_t bytes, unsigned char* out,
                                         std::size_t out_bytes, int* status) {
   if (zero_bytes_ != bytes || zero_stream_.empty()) {
@@ -208,22 +216,14 @@ std::size_t ChunkDeflater::zeros_stream(const unsigned char* zeros, std::size_t 
 
 std::size_t ChunkDeflater::deflate_zeros(std::size_t bytes, unsigned char* out, std::size_t out_bytes, int* status) {
   *status = 0;
-  if (bytes > std::numeric_limits<std::uint32_t>::max() || out_bytes < bound(bytes, 1)) {
-    throw std::logic_error("ChunkDeflater: a chunk of " + std::to_string(bytes) + " bytes needs " +
-                           std::to_string(bound(bytes, 1)) + " bytes of room within ISA-L's 32-bit sizes, not " +
-                           std::to_string(out_bytes));
-  }
+  require_room(bytes, 1, out_bytes);
   return zeros_stream(nullptr, bytes, out, out_bytes, status);
 }
 
 std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
                                    std::size_t row_elements, unsigned char* out, std::size_t out_bytes, int* status) {
   *status = 0;
-  if (bytes > std::numeric_limits<std::uint32_t>::max() || out_bytes < bound(bytes, planes)) {
-    throw std::logic_error("ChunkDeflater: a chunk of " + std::to_string(bytes) + " bytes needs " +
-                           std::to_string(bound(bytes, planes)) + " bytes of room within ISA-L's 32-bit sizes, not " +
-                           std::to_string(out_bytes));
-  }
+  require_room(bytes, planes, out_bytes);
   if (all_zero(chunk, bytes)) return zeros_stream(chunk, bytes, out, out_bytes, status);
   constexpr std::size_t most_planes = 16;
   std::array<bool, most_planes> noise{};

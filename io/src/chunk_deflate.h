@@ -59,6 +59,10 @@ class ChunkDeflater {
   std::size_t run_isal(const unsigned char* in, std::size_t bytes, bool zlib, bool last, unsigned char* out,
                        std::size_t out_bytes, int* status);
 
+  // std::logic_error unless a chunk of `bytes` bytes in `planes` planes fits ISA-L's 32-bit sizes and `out_bytes`
+  // holds bound(bytes, planes): deflate()'s and deflate_zeros()'s precondition.
+  static void require_room(std::size_t bytes, std::size_t planes, std::size_t out_bytes);
+
   // The zlib stream of `bytes` zero bytes, from zero_stream_ when it is that size's, else made by ISA-L from
   // `zeros` (`bytes` zero bytes; null: made here) and kept.
   std::size_t zeros_stream(const unsigned char* zeros, std::size_t bytes, unsigned char* out, std::size_t out_bytes,
