@@ -162,16 +162,54 @@ std::size_t ChunkDeflater::bound(std::size_t bytes, std::size_t planes) {
   return bytes + 5 * (bytes / stored_block_bytes + 1) + planes * (5 + ISAL_DEF_MAX_HDR_SIZE + 5) + 6;
 }
 
+std::vector<unsigned char> structured_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
+                                             std::size_t row_elements) {
+  std::vector<unsigned char> kept;
+  const std::size_t n = planes > 0 ? bytes / planes : bytes;
+  if (planes <= 1 || n * planes != bytes) return kept;
+  std::vector<bool> noise(planes);
+  std::size_t noisy = 0;
+  for (std::size_t j = 0; j < planes; ++j) noisy += noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
+  if (noisy == 0 || noisy == planes) return kept;
+  kept.reserve((planes - noisy) * n);
+  for (std::size_t j = 0; j < planes; ++j) {
+    if (!noise[j]) kept.insert(kept.end(), chunk + j * n, chunk + (j + 1) * n);
+  }
+  return kept;
+}
+
+PlaneCodes::PlaneCodes(const unsigned char* sample, std::size_t bytes) : tables_(std::make_unique<isal_hufftables>()) {
+  if (bytes == 0 || bytes > std::numeric_limits<std::uint32_t>::max()) {
+    throw std::logic_error("PlaneCodes: a sample of 1 to 2^32 - 1 bytes expected, not " + std::to_string(bytes));
+  }
+  isal_huff_histogram histogram{};
+  isal_update_histogram(const_cast<std::uint8_t*>(sample), static_cast<int>(bytes), &histogram);
+  clear_upper_vector_state();
+  // Every symbol gets a code (ISA-L's contract for custom tables), so any chunk's planes can be coded.
+  if (isal_create_hufftables(tables_.get(), &histogram) != 0) throw std::logic_error("PlaneCodes: ISA-L made no codes");
+  clear_upper_vector_state();
+}
+
+PlaneCodes::~PlaneCodes() = default;
+
 std::size_t ChunkDeflater::run_isal(const unsigned char* in, std::size_t bytes, bool zlib, bool last, unsigned char* out,
-                                    std::size_t out_bytes, int* status) {
+                                    std::size_t out_bytes, int* status, const PlaneCodes* codes) {
   // Value-initialised first: 2.30's init leaves hist_bits (the match window) unset, and garbage there would make a
   // chunk's bytes differ from run to run (0: the default, 32 KiB).
   isal_zstream stream{};
   isal_deflate_stateless_init(&stream);
   stream.hist_bits = 0;
-  stream.level = static_cast<std::uint32_t>(level_);
-  stream.level_buf = level_buffer_.get();
-  stream.level_buf_size = static_cast<std::uint32_t>(level_bytes_);
+  if (codes != nullptr) {  // level 0 with the dataset's codes: no level buffer, no codes built here
+    stream.level = 0;
+    if (isal_deflate_set_hufftables(&stream, &codes->tables(), IGZIP_HUFFTABLE_CUSTOM) != COMP_OK) {
+      *status = ISAL_INVALID_OPERATION;
+      return 0;
+    }
+  } else {
+    stream.level = static_cast<std::uint32_t>(level_);
+    stream.level_buf = level_buffer_.get();
+    stream.level_buf_size = static_cast<std::uint32_t>(level_bytes_);
+  }
   stream.gzip_flag = zlib ? IGZIP_ZLIB : IGZIP_DEFLATE;  // a zlib header and Adler-32 trailer, or neither
   stream.end_of_stream = last ? 1 : 0;
   stream.flush = last ? NO_FLUSH : FULL_FLUSH;  // not last: byte-aligned, the next blocks follow
@@ -221,7 +259,8 @@ std::size_t ChunkDeflater::deflate_zeros(std::size_t bytes, unsigned char* out, 
 }
 
 std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
-                                   std::size_t row_elements, unsigned char* out, std::size_t out_bytes, int* status) {
+                                   std::size_t row_elements, unsigned char* out, std::size_t out_bytes, int* status,
+                                   const PlaneCodes* codes) {
   *status = 0;
   require_room(bytes, planes, out_bytes);
   if (all_zero(chunk, bytes)) return zeros_stream(chunk, bytes, out, out_bytes, status);
@@ -247,7 +286,7 @@ std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes
     if (noise[first]) {
       written += store(in, run_bytes, last, out + written);
     } else {
-      const std::size_t made = run_isal(in, run_bytes, false, last, out + written, out_bytes - written, status);
+      const std::size_t made = run_isal(in, run_bytes, false, last, out + written, out_bytes - written, status, codes);
       if (made == 0) return 0;
       written += made;
     }

@@ -20,6 +20,8 @@
 #include <memory>
 #include <vector>
 
+struct isal_hufftables;
+
 namespace throng::h5::detail {
 
 /// Whether a byte plane of n bytes looks like noise deflate cannot shrink: judged on 16 windows of 64 bytes spread
@@ -31,6 +33,32 @@ namespace throng::h5::detail {
 /// at other distances that still passes (a crowd tiled from copies of one patch, agent by agent) is stored whole:
 /// a larger file, never a wrong one.
 [[nodiscard]] bool looks_like_noise(const unsigned char* plane, std::size_t n, std::size_t row_elements);
+
+/// The byte planes of a chunk that looks_like_noise does not call noise, one after the other (its `planes` planes of
+/// bytes / planes bytes each); empty when none is noise or every one is (such a chunk is deflated whole, or stored).
+[[nodiscard]] std::vector<unsigned char> structured_planes(const unsigned char* chunk, std::size_t bytes,
+                                                           std::size_t planes, std::size_t row_elements);
+
+/// Huffman codes for the structured planes of every chunk of one dataset's component, made once from its first
+/// chunk's (structured_planes) with ISA-L's isal_update_histogram and isal_create_hufftables: every literal, length
+/// and distance has a code, so any bytes can be coded with them. ISA-L's level 1 builds codes for each chunk from
+/// its own histogram; with these its level 0 codes each chunk's structured planes without that step and with a
+/// lighter match search: on a 6,000-agent sketch's position and orientation planes 15.3 instead of 27.4 µs a chunk,
+/// 33.2 instead of 29.1 % of the planes' bytes (a file 1-2 % larger: the structured planes are a quarter of a chunk,
+/// the rest stored). The codes depend on the first chunk's bytes alone, so a dataset's bytes still depend on its
+/// values alone.
+class PlaneCodes {
+ public:
+  /// Codes made from `bytes` bytes at `sample` (at least one).
+  PlaneCodes(const unsigned char* sample, std::size_t bytes);
+  ~PlaneCodes();
+  PlaneCodes(const PlaneCodes&) = delete;
+  PlaneCodes& operator=(const PlaneCodes&) = delete;
+  [[nodiscard]] isal_hufftables& tables() const noexcept { return *tables_; }
+
+ private:
+  std::unique_ptr<isal_hufftables> tables_;
+};
 
 /// ISA-L's deflate at a dataset's level, with buffers one task reuses from chunk to chunk.
 class ChunkDeflater {
@@ -44,10 +72,12 @@ class ChunkDeflater {
 
   /// Writes the zlib stream of `bytes` bytes at `chunk`, taken as `planes` byte planes of bytes / planes each
   /// (1: one plane, deflated whole) to `out` (room for bound(bytes, planes)); `row_elements` as looks_like_noise's.
+  /// With `codes` and some planes noise, the structured planes are coded with those codes at ISA-L's level 0
+  /// instead of at the dataset's level (a chunk deflated whole is not: the codes were made for structured planes).
   /// Returns the stream's length, or 0 with ISA-L's status in *status when ISA-L fails; std::logic_error for a
   /// chunk beyond 4 GiB or `out_bytes` under bound(bytes, planes).
   std::size_t deflate(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements,
-                      unsigned char* out, std::size_t out_bytes, int* status);
+                      unsigned char* out, std::size_t out_bytes, int* status, const PlaneCodes* codes = nullptr);
 
   /// What deflate() writes for a chunk of `bytes` zero bytes (whatever its planes), without the chunk: for a caller
   /// that knows it is zeros before gathering it. The same failures as deflate().
@@ -56,8 +86,9 @@ class ChunkDeflater {
  private:
   // One ISA-L call: a raw deflate (zlib = false: no header, no trailer; its last block final when `last`, else
   // ending on a byte boundary) or a whole zlib stream. Returns the bytes written, 0 on failure (*status set).
+  // With `codes`: ISA-L's level 0 with those codes (a raw deflate only).
   std::size_t run_isal(const unsigned char* in, std::size_t bytes, bool zlib, bool last, unsigned char* out,
-                       std::size_t out_bytes, int* status);
+                       std::size_t out_bytes, int* status, const PlaneCodes* codes = nullptr);
 
   // std::logic_error unless a chunk of `bytes` bytes in `planes` planes fits ISA-L's 32-bit sizes and `out_bytes`
   // holds bound(bytes, planes): deflate()'s and deflate_zeros()'s precondition.

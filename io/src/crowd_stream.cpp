@@ -79,6 +79,7 @@ struct Stream {
   std::uint64_t handed = 0;       // rows handed to the writer (the active buffer's first row)
   Handle set;                     // created by the writer
   bool extendible = false;
+  h5::detail::DatasetCodes codes;  // made by the first block's filter_chunks, used by every block after it
 
   [[nodiscard]] unsigned char* row(std::uint64_t r) { return buffer[active].data() + r * row_bytes; }
 };
@@ -204,7 +205,7 @@ struct CrowdStreamWriter::Impl {
       };
       const unsigned char* rows = s.buffer[job.buffer].data();
       if (shape.storage == CrowdStorage::compressed) {
-        h5::detail::ChunkedLayout layout{job.rows, s.row_bytes, s.chunk_rows, s.element_size, h5::detail::deflate_level, s.width};
+        h5::detail::ChunkedLayout layout{job.rows, s.row_bytes, s.chunk_rows, s.element_size, h5::detail::deflate_level, s.width, &s.codes};
         h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(rows), layout, where, write_chunk);
       } else {
         write_plain_chunks(rows, job.rows, s.row_bytes, s.chunk_rows, write_chunk);

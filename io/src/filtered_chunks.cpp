@@ -169,6 +169,35 @@ unsigned char* shuffled_room(ThreadBuffers& buffers, std::size_t bytes, std::uni
   return buffers.shuffled.data();
 }
 
+// Makes `codes` (once) from the first chunk of `data`, component by component: for a layout of several components at
+// deflate level 1 (a crowd's positions and orientations, whose low planes are noise); none otherwise, nor for a
+// component of zeros or one with no plane of noise in its first chunk (deflated whole at the dataset's level).
+void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uint64_t chunk_bytes, DatasetCodes& codes) {
+  codes.made = true;
+  const std::uint64_t C = layout.components;
+  if (C <= 1 || layout.level > 1 || layout.element_size < 2 || layout.rows == 0) return;
+  codes.by_component.assign(C, nullptr);
+  const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows);
+  std::vector<unsigned char> padded;
+  const unsigned char* chunk = data;
+  if (rows < layout.chunk_rows) {  // the edge chunk, padded as compress pads it
+    padded.assign(layout.chunk_rows * layout.row_bytes, 0);
+    std::memcpy(padded.data(), data, rows * layout.row_bytes);
+    chunk = padded.data();
+  }
+  const std::size_t n = chunk_bytes / layout.element_size;
+  std::vector<unsigned char> shuffled(chunk_bytes);
+  for (std::uint64_t c = 0; c < C; ++c) {
+    const unsigned char* first = chunk + c * layout.element_size;
+    if (zero_component(first, n, layout.element_size, C * layout.element_size)) continue;
+    shuffle(first, n, layout.element_size, C * layout.element_size, shuffled.data());
+    // Noise judged without the repeat test (row_elements 0): a crowd's first frames often stand still, so their low
+    // planes repeat one row back and would count as structured, though they are noise in the frames after.
+    const std::vector<unsigned char> sample = structured_planes(shuffled.data(), chunk_bytes, layout.element_size, 0);
+    if (!sample.empty()) codes.by_component[c] = std::make_shared<const PlaneCodes>(sample.data(), sample.size());
+  }
+}
+
 [[noreturn]] void not_deflated(const std::string& where, std::uint64_t chunk, int status) {
   throw IoError("cannot write " + where + ": ISA-L could not deflate chunk " + std::to_string(chunk) + " (status " +
                 std::to_string(status) + ")");
@@ -194,6 +223,9 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   const bool transposed = layout.element_size > 1 || C > 1;  // shuffled, or one component taken out of the rows
   const std::uint64_t row_elements = layout.row_bytes / (C * layout.element_size);  // one component's, in a row
   const std::size_t out_bytes = ChunkDeflater::bound(chunk_bytes, layout.element_size);
+  DatasetCodes call_codes;  // without the caller's: this call's own
+  DatasetCodes& codes = layout.codes != nullptr ? *layout.codes : call_codes;
+  if (!codes.made) make_codes(reinterpret_cast<const unsigned char*>(data), layout, chunk_bytes, codes);
   // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
@@ -252,8 +284,9 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       // or more goes to the disk without a copy into the page cache).
       int status = 0;
       group.packed[k] = aligned_bytes(out_bytes);
+      const PlaneCodes* plane_codes = component < codes.by_component.size() ? codes.by_component[component].get() : nullptr;
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
-                                                group.packed[k].get(), out_bytes, &status);
+                                                group.packed[k].get(), out_bytes, &status, plane_codes);
       if (group.size[k] == 0) not_deflated(where, group.first + k, status);  // a failure, not an empty chunk
       if (reusable) {
         buffers.last_chunk.assign(raw, raw + chunk_bytes);

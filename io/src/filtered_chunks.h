@@ -13,10 +13,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace throng::h5::detail {
+
+class PlaneCodes;
+
+/// The Huffman codes of a dataset's components (chunk_deflate.h's PlaneCodes), made from the dataset's first chunk
+/// of each component by the first filter_chunks call given this object, and used by the calls after it: a dataset
+/// written block by block (crowd_stream.cpp) codes every block as a dataset written in one call does.
+struct DatasetCodes {
+  bool made = false;
+  std::vector<std::shared_ptr<const PlaneCodes>> by_component;  ///< null: that component at the dataset's level
+};
 
 /// The layout of a dataset created with chunks of `chunk_rows` whole rows along its first axis and the filters
 /// shuffle (element size `element_size`) then deflate (`level`). With `components` > 1 the last axis (that many
@@ -31,10 +42,14 @@ struct ChunkedLayout {
   std::size_t element_size = 0;
   int level = 1;
   std::uint64_t components = 1;    ///< the last axis's length when it is chunked an index at a time, else 1
+  /// Kept by the caller across the calls that write one dataset (the first call's rows start at the dataset's
+  /// first row); null: made for this call alone, from its first chunk.
+  DatasetCodes* codes = nullptr;
 };
 
 /// Filters `data` (rows × row_bytes bytes, already in the dataset's file type) chunk by chunk as a dataset of that
-/// layout stores it, and calls write(first row of the chunk, its component (0 without components), its filtered
+/// layout stores it (deflate level 1 with components: each component's structured planes with the codes of its
+/// first chunk, DatasetCodes), and calls write(first row of the chunk, its component (0 without components), its filtered
 /// bytes and their count) for every chunk in order: by rows, then by component, one call at a time (from any of
 /// the threads: libhdf5 may be called there, never concurrently). The bytes lie at the start of a buffer aligned to
 /// direct_write_block (direct_write_driver.h), so the file driver writes them straight to the disk.

@@ -241,3 +241,54 @@ TEST_CASE("the deflater refuses room under its bound") {
   int status = 0;
   CHECK_THROWS_AS(deflater.deflate(chunk.data(), chunk.size(), 8, 0, out.data(), out.size(), &status), std::logic_error);
 }
+
+TEST_CASE("plane codes made from one chunk code any chunk's structured planes: zlib inflates them back") {
+  const std::size_t n = 10'000;
+  const std::vector<unsigned char> first = planes_of(walk(n, 11));
+  // The structured planes are the planes that are not noise, one after the other; none for a chunk without noise
+  // or all noise.
+  std::size_t noise_planes = 0;
+  for (std::size_t j = 0; j < 8; ++j) noise_planes += looks_like_noise(first.data() + j * n, n, 0);
+  const std::vector<unsigned char> sample = structured_planes(first.data(), first.size(), 8, 0);
+  REQUIRE(sample.size() == (8 - noise_planes) * n);
+  CHECK(std::equal(sample.end() - static_cast<std::ptrdiff_t>(n), sample.end(), first.end() - static_cast<std::ptrdiff_t>(n)));
+  const std::vector<unsigned char> constant(8 * n, 0x40);
+  CHECK(structured_planes(constant.data(), constant.size(), 8, 0).empty());
+  std::mt19937_64 random(5);
+  std::vector<unsigned char> noise(8 * n);
+  for (auto& b : noise) b = static_cast<unsigned char>(random());
+  CHECK(structured_planes(noise.data(), noise.size(), 8, 0).empty());
+
+  const PlaneCodes codes(sample.data(), sample.size());
+  ChunkDeflater deflater(1);
+  // Chunks other than the sample: a later frame of the walk, and a crowd a million metres away whose high bytes
+  // never occur in the sample (every symbol has a code).
+  std::vector<double> far = walk(n, 12);
+  for (double& v : far) v = -1.0e6 - v;
+  for (const std::vector<unsigned char>& chunk : {first, planes_of(walk(n, 12)), planes_of(far)}) {
+    Deflated coded;
+    coded.stream.resize(ChunkDeflater::bound(chunk.size(), 8));
+    const std::size_t made = deflater.deflate(chunk.data(), chunk.size(), 8, 0, coded.stream.data(),
+                                              coded.stream.size(), &coded.status, &codes);
+    REQUIRE(coded.status == 0);
+    REQUIRE(made > 0);
+    coded.stream.resize(made);
+    CHECK(inflate_stream(coded.stream, chunk.size()) == chunk);
+    // Not the stream of the dataset's level (the codes were used), of about its length, and the same again from
+    // another deflater.
+    const Deflated plain = deflate_chunk(deflater, chunk, 8, 0);
+    CHECK(coded.stream != plain.stream);
+    CHECK(coded.stream.size() < plain.stream.size() * 11 / 10);
+    ChunkDeflater other(1);
+    std::vector<unsigned char> again(ChunkDeflater::bound(chunk.size(), 8));
+    int status = 0;
+    again.resize(other.deflate(chunk.data(), chunk.size(), 8, 0, again.data(), again.size(), &status, &codes));
+    CHECK(again == coded.stream);
+  }
+  // A chunk without noise is deflated whole at the dataset's level, codes or not.
+  Deflated whole;
+  whole.stream.resize(ChunkDeflater::bound(constant.size(), 8));
+  whole.stream.resize(deflater.deflate(constant.data(), constant.size(), 8, 0, whole.stream.data(), whole.stream.size(),
+                                       &whole.status, &codes));
+  CHECK(whole.stream == deflate_chunk(deflater, constant, 8, 0).stream);
+}

@@ -267,3 +267,36 @@ TEST_CASE("chunks equal to the one before and components of zeros read back exac
   std::memcpy(halves.data(), ids.data(), ids.size() * sizeof(std::int64_t));
   CHECK(f.root().read_int32("halves", 2).values == halves);
 }
+
+TEST_CASE("a dataset filtered block by block with its codes kept is the dataset filtered in one call, byte for byte") {
+  // Positions (8 frames × 5,000 agents × 3, chunks of one frame's component): the structured planes of x and y are
+  // coded with codes made from frame 0 (filtered_chunks.h's DatasetCodes). A streamed file (crowd_stream.cpp)
+  // writes them in blocks and keeps the codes from its first block: its chunks are then those of one call.
+  const std::vector<double> values = walk();
+  const std::uint64_t row_bytes = 5000 * 3 * sizeof(double);
+  using Chunks = std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, std::vector<unsigned char>>>;
+  const auto filter = [&](std::uint64_t first_row, std::uint64_t rows, h5::detail::DatasetCodes* codes, Chunks& out) {
+    const h5::detail::ChunkedLayout layout{rows, row_bytes, 1, sizeof(double), 1, 3, codes};
+    h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data() + first_row * 5000 * 3), layout, "test",
+                              [&](std::uint64_t row, std::uint64_t component, const unsigned char* bytes, std::size_t size) {
+                                out.push_back({{first_row + row, component}, std::vector<unsigned char>(bytes, bytes + size)});
+                              });
+  };
+  Chunks whole, blocks, fresh;
+  filter(0, 8, nullptr, whole);
+  h5::detail::DatasetCodes kept;
+  filter(0, 3, &kept, blocks);
+  filter(3, 5, &kept, blocks);
+  REQUIRE(whole.size() == 24);
+  CHECK(blocks == whole);
+  CHECK(kept.made);
+  REQUIRE(kept.by_component.size() == 3);
+  CHECK(kept.by_component[0] != nullptr);
+  CHECK(kept.by_component[1] != nullptr);
+  CHECK(kept.by_component[2] == nullptr);  // z: zeros
+  // Codes made again from the second block's first frame code its chunks otherwise: the codes are what is kept.
+  filter(0, 3, nullptr, fresh);
+  filter(3, 5, nullptr, fresh);
+  CHECK(fresh != whole);
+  CHECK(std::equal(fresh.begin(), fresh.begin() + 9, whole.begin()));
+}
