@@ -169,9 +169,16 @@ unsigned char* shuffled_room(ThreadBuffers& buffers, std::size_t bytes, std::uni
   return buffers.shuffled.data();
 }
 
+// Codes are made for chunks whose structured planes are at most this many bytes. What they save is ISA-L's level 1
+// building codes for each chunk, a cost per chunk; its level 0 codes a byte more slowly than level 1 (perf of
+// `bench_sketch_command`: ISA-L's samples 590 -> 455 with codes at 10,000 agents, structured planes of 20 KB a
+// chunk, but 371 -> 418 at 100,000, 200 KB a chunk), so larger chunks keep level 1.
+constexpr std::size_t coded_planes_most = 64 * 1024;
+
 // Makes `codes` (once) from the first chunk of `data`, component by component: for a layout of several components at
 // deflate level 1 (a crowd's positions and orientations, whose low planes are noise); none otherwise, nor for a
-// component of zeros or one with no plane of noise in its first chunk (deflated whole at the dataset's level).
+// component of zeros, one with no plane of noise in its first chunk (deflated whole at the dataset's level) or one
+// whose structured planes are beyond coded_planes_most.
 void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uint64_t chunk_bytes, DatasetCodes& codes) {
   codes.made = true;
   const std::uint64_t C = layout.components;
@@ -194,7 +201,9 @@ void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uin
     // Noise judged without the repeat test (row_elements 0): a crowd's first frames often stand still, so their low
     // planes repeat one row back and would count as structured, though they are noise in the frames after.
     const std::vector<unsigned char> sample = structured_planes(shuffled.data(), chunk_bytes, layout.element_size, 0);
-    if (!sample.empty()) codes.by_component[c] = std::make_shared<const PlaneCodes>(sample.data(), sample.size());
+    if (!sample.empty() && sample.size() <= coded_planes_most) {
+      codes.by_component[c] = std::make_shared<const PlaneCodes>(sample.data(), sample.size());
+    }
   }
 }
 
