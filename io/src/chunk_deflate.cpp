@@ -102,6 +102,12 @@ bool all_zero(const unsigned char* data, std::size_t bytes) {
   return true;
 }
 
+// Which of a chunk's `planes` planes (bytes / planes bytes each) look like noise: none for a chunk of one plane, of
+// more than NoisePlanes holds, or not of whole planes. deflate() stores those planes; structured_planes() skips them.
+constexpr std::size_t most_planes = 16;
+using NoisePlanes = std::array<bool, most_planes>;
+NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements);
+
 }  // namespace
 
 bool looks_like_noise(const unsigned char* plane, std::size_t n, std::size_t row_elements) {
@@ -162,15 +168,24 @@ std::size_t ChunkDeflater::bound(std::size_t bytes, std::size_t planes) {
   return bytes + 5 * (bytes / stored_block_bytes + 1) + planes * (5 + ISAL_DEF_MAX_HDR_SIZE + 5) + 6;
 }
 
+namespace {
+NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements) {
+  NoisePlanes noise{};
+  const std::size_t n = planes > 0 ? bytes / planes : bytes;
+  if (planes > 1 && planes <= most_planes && n * planes == bytes) {
+    for (std::size_t j = 0; j < planes; ++j) noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
+  }
+  return noise;
+}
+}  // namespace
+
 std::vector<unsigned char> structured_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
                                              std::size_t row_elements) {
   std::vector<unsigned char> kept;
-  const std::size_t n = planes > 0 ? bytes / planes : bytes;
-  if (planes <= 1 || n * planes != bytes) return kept;
-  std::vector<bool> noise(planes);
-  std::size_t noisy = 0;
-  for (std::size_t j = 0; j < planes; ++j) noisy += noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
+  const NoisePlanes noise = noise_planes(chunk, bytes, planes, row_elements);
+  const auto noisy = static_cast<std::size_t>(std::count(noise.begin(), noise.end(), true));
   if (noisy == 0 || noisy == planes) return kept;
+  const std::size_t n = bytes / planes;
   kept.reserve((planes - noisy) * n);
   for (std::size_t j = 0; j < planes; ++j) {
     if (!noise[j]) kept.insert(kept.end(), chunk + j * n, chunk + (j + 1) * n);
@@ -179,8 +194,9 @@ std::vector<unsigned char> structured_planes(const unsigned char* chunk, std::si
 }
 
 PlaneCodes::PlaneCodes(const unsigned char* sample, std::size_t bytes) : tables_(std::make_unique<isal_hufftables>()) {
-  if (bytes == 0 || bytes > std::numeric_limits<std::uint32_t>::max()) {
-    throw std::logic_error("PlaneCodes: a sample of 1 to 2^32 - 1 bytes expected, not " + std::to_string(bytes));
+  // isal_update_histogram takes an int.
+  if (bytes == 0 || bytes > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw std::logic_error("PlaneCodes: a sample of 1 to 2^31 - 1 bytes expected, not " + std::to_string(bytes));
   }
   isal_huff_histogram histogram{};
   isal_update_histogram(const_cast<std::uint8_t*>(sample), static_cast<int>(bytes), &histogram);
@@ -264,13 +280,9 @@ std::size_t ChunkDeflater::deflate(const unsigned char* chunk, std::size_t bytes
   *status = 0;
   require_room(bytes, planes, out_bytes);
   if (all_zero(chunk, bytes)) return zeros_stream(chunk, bytes, out, out_bytes, status);
-  constexpr std::size_t most_planes = 16;
-  std::array<bool, most_planes> noise{};
-  bool any_noise = false;
+  const NoisePlanes noise = noise_planes(chunk, bytes, planes, row_elements);
+  const bool any_noise = std::find(noise.begin(), noise.end(), true) != noise.end();
   const std::size_t n = planes > 0 ? bytes / planes : bytes;
-  if (planes > 1 && planes <= most_planes && n * planes == bytes) {
-    for (std::size_t j = 0; j < planes; ++j) any_noise |= noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
-  }
   if (!any_noise) return run_isal(chunk, bytes, true, true, out, out_bytes, status);  // the whole chunk deflated
 
   // zlib's header for a 32 KiB window at its fastest levels (CMF 0x78, FLG 0x01: 0x7801 is a multiple of 31).

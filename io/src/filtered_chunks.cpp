@@ -180,9 +180,10 @@ constexpr std::size_t coded_planes_most = 64 * 1024;
 // component of zeros, one with no plane of noise in its first chunk (deflated whole at the dataset's level) or one
 // whose structured planes are beyond coded_planes_most.
 void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uint64_t chunk_bytes, DatasetCodes& codes) {
+  if (layout.rows == 0) return;  // nothing to make them from: the next call's first chunk is the dataset's
   codes.made = true;
   const std::uint64_t C = layout.components;
-  if (C <= 1 || layout.level > 1 || layout.element_size < 2 || layout.rows == 0) return;
+  if (C <= 1 || layout.level > 1 || layout.element_size < 2) return;
   codes.by_component.assign(C, nullptr);
   const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows);
   std::vector<unsigned char> padded;
