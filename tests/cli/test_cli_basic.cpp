@@ -7,7 +7,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 
 using namespace throng;
 using Catch::Matchers::Contains;
@@ -16,6 +18,9 @@ namespace {
 
 
 using test::run;
+using test::run_command;
+using test::throng_program;
+using test::write_file;
 
 std::size_t files_in(const std::filesystem::path& dir) {
   return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
@@ -33,6 +38,41 @@ TEST_CASE("help and version exit 0, a bad command line exits 2") {
   CHECK(run("frobnicate", &out) == 2);
   CHECK(run("info", &out) == 2);  // missing its file argument
   CHECK(run("info a.h5 --threads minus-one", &out) == 2);
+}
+
+// The launcher (drivers/launcher.cpp) against a stand-in throng-main beside a copy of it: a script that prints its
+// process id, arguments and the variables the launcher decides.
+TEST_CASE("throng runs throng-main in its own place, once, with its arguments and the huge-page tunable decided") {
+  const std::filesystem::path folder = test::scratch_dir("launcher");
+  std::filesystem::copy_file(throng_program(), folder / "throng");
+  const std::filesystem::path stand_in = write_file(
+      folder / "throng-main",
+      "#!/bin/sh\necho \"pid=$$ args=$*\"\necho \"tunables=$GLIBC_TUNABLES marker=$THRONG_HUGE_PAGES_RESTARTED\"\n");
+  std::filesystem::permissions(stand_in, std::filesystem::perms::owner_all);
+  std::ifstream mode_file("/sys/kernel/mm/transparent_hugepage/enabled");
+  const std::string mode((std::istreambuf_iterator<char>(mode_file)), std::istreambuf_iterator<char>());
+  const bool asks = mode.find("[madvise]") != std::string::npos;
+  const std::string clean = "env -u GLIBC_TUNABLES -u THRONG_HUGE_PAGES -u THRONG_HUGE_PAGES_RESTARTED ";
+  // Started through a link in another folder, as from a PATH entry: throng-main is found beside the real file.
+  const std::filesystem::path elsewhere = test::scratch_dir("launcher_link");
+  std::filesystem::create_symlink(folder / "throng", elsewhere / "throng");
+
+  std::string out;
+  REQUIRE(run_command("sh -c 'echo shell=$$; exec " + clean + (elsewhere / "throng").string() + " sketch \"a b\" -q'", &out) == 0);
+  INFO(out);
+  const std::string shell = out.substr(6, out.find('\n') - 6);
+  CHECK_THAT(out, Contains("pid=" + shell + " args=sketch a b -q\n"));  // the same process: signals reach it
+  CHECK_THAT(out, Contains(asks ? "tunables=glibc.malloc.hugetlb=1 marker=1\n" : "tunables= marker=\n"));
+  // A user's choice is kept: their tunables, or huge pages turned off.
+  REQUIRE(run_command("env -u THRONG_HUGE_PAGES_RESTARTED GLIBC_TUNABLES=glibc.malloc.arena_max=2 " + (folder / "throng").string(), &out) == 0);
+  CHECK_THAT(out, Contains("tunables=glibc.malloc.arena_max=2 marker=\n"));
+  REQUIRE(run_command(clean + "THRONG_HUGE_PAGES=0 " + (folder / "throng").string(), &out) == 0);
+  CHECK_THAT(out, Contains("tunables= marker=\n"));
+
+  // Without throng-main: exit 70 (internal error) naming what is missing.
+  std::filesystem::remove(stand_in);
+  CHECK(run_command((folder / "throng").string() + " --version", &out) == 70);
+  CHECK_THAT(out, Contains("throng: cannot run " + (folder / "throng-main").string() + " (No such file or directory)"));
 }
 
 TEST_CASE("numeric flags out of range exit 2 with a message a person can read") {
