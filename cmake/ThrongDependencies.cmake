@@ -20,6 +20,9 @@ pkg_check_modules(HDF5 REQUIRED IMPORTED_TARGET hdf5-openmpi)
 # ISA-L (libisal-dev): io deflates a dataset's chunks in parallel with its igzip, 3x libdeflate's and 8x zlib's
 # speed at level 1, into zlib streams any HDF5 reader inflates (io/src/chunk_deflate.h, filtered_chunks.h).
 pkg_check_modules(LIBISAL REQUIRED IMPORTED_TARGET libisal)
+# zlib (zlib1g-dev): the deflate filter io registers with libhdf5 compresses what libhdf5 compresses itself with it,
+# as libhdf5 did (io/src/deflate_filter.h), and inflates with ISA-L.
+find_package(ZLIB REQUIRED)
 
 # SuiteSparse (CHOLMOD) and METIS ship no CMake config on Debian 12.
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)

@@ -28,13 +28,6 @@ namespace {
 __attribute__((target("avx"))) void zero_upper_halves() { _mm256_zeroupper(); }
 #endif
 
-void clear_upper_vector_state() {
-#if defined(__x86_64__)
-  static const bool has_avx = __builtin_cpu_supports("avx");
-  if (has_avx) zero_upper_halves();
-#endif
-}
-
 int isal_level(int zlib_level) {
   if (zlib_level <= 1) return 1;
   return zlib_level <= 5 ? 2 : 3;
@@ -109,6 +102,13 @@ using NoisePlanes = std::array<bool, most_planes>;
 NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements);
 
 }  // namespace
+
+void clear_upper_vector_state() {
+#if defined(__x86_64__)
+  static const bool has_avx = __builtin_cpu_supports("avx");
+  if (has_avx) zero_upper_halves();
+#endif
+}
 
 bool looks_like_noise(const unsigned char* plane, std::size_t n, std::size_t row_elements) {
   constexpr std::size_t window = 64, windows = 16;

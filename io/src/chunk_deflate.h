@@ -24,6 +24,11 @@ struct isal_hufftables;
 
 namespace throng::h5::detail {
 
+/// Clears the upper halves of the vector registers after a call into ISA-L, whose AVX2 and AVX-512 code (2.30:
+/// deflate, inflate, Adler-32) leaves them dirty and slows every SSE instruction after it on that thread (3.6x on a
+/// float loop); call it after each ISA-L call.
+void clear_upper_vector_state();
+
 /// Whether a byte plane of n bytes looks like noise deflate cannot shrink: judged on 16 windows of 64 bytes spread
 /// over it. Noise has bytes spread evenly (the windows' byte histogram close to uniform: its sum of squared counts
 /// within 0.1 × n²/256 of what uniform random bytes give), no runs (a byte equal to the one before in under 1 in

@@ -5,6 +5,7 @@
 #include <throng/io/input_file.h>
 
 #include "address_space_cap.h"
+#include "deflate_filter.h"
 #include "direct_write_driver.h"
 #include "filtered_chunks.h"
 #include "global_heap_check.h"
@@ -111,12 +112,15 @@ Handle simple_space(const std::vector<std::uint64_t>& shape) {
 // H5Fclose fails too and leaves the file's identifier pointing at a half-freed file, which libhdf5 1.10's exit
 // handler (H5F_term_package → H5F__close_cb) then dereferences: the segfault (exit 139) after "disk full" of issue
 // 18. Every file we write is closed explicitly and only committed when that succeeded, so nothing is lost.
+//
+// Chunks are inflated with ISA-L instead of zlib (deflate_filter.h).
 void silence_hdf5() {
   static std::once_flag once;
   std::call_once(once, [] {
     H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     H5PLset_loading_state(0);
+    use_isal_inflate();
   });
 }
 
@@ -327,8 +331,8 @@ std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const E
       throw InputError(where + ": its chunks (" + (chunk_bytes ? format_bytes(*chunk_bytes) : std::string("beyond 2^64 bytes")) +
                        " each) are larger than the " + format_bytes(stored) + " it stores can expand to: damaged or hostile file, refused before reading");
     }
-    // A filtered chunk is decoded in libhdf5's own buffer: deflate grows it by doubling from the stored size (the
-    // last one under twice the chunk) and, while it grows, the previous one is alive too; three chunks cover both.
+    // A filtered chunk is decoded in libhdf5's own buffer: deflate (deflate_filter.h) grows it by doubling from twice
+    // the stored size (the last one under twice the chunk) and, while it grows, the previous one is alive too; three chunks cover both.
     // An unfiltered chunk larger than the chunk cache is read straight into the caller's buffer.
     if (filters > 0) return checked_product(*chunk_bytes, 3).value_or(UINT64_MAX);
   }
