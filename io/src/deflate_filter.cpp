@@ -34,19 +34,28 @@ std::size_t compressed_room(std::size_t bytes) {
 // The largest output a chunk may inflate to: libhdf5's chunks are at most 4 GiB.
 constexpr std::size_t largest_chunk = std::size_t{1} << 32;
 
+thread_local std::uint64_t decoded_chunk_bytes = 0;
+
+// Room past a known chunk size: an honest stream fills the chunk exactly and ISA-L then still reads its end and
+// checksum, which it does only with output room left; a stream that writes into it inflates beyond its chunk.
+constexpr std::size_t past_chunk = 64;
+
 // A filter callback fails by returning 0; on success it replaces *buf (allocated with H5allocate_memory, as libhdf5
 // allocates the pipeline's buffers) and returns the bytes in it.
 std::size_t inflate_chunk(std::size_t bytes, std::size_t* buf_size, void** buf) {
   if (bytes > std::numeric_limits<std::uint32_t>::max()) return 0;
-  // Twice the stored size to start with, doubled when full: the last buffer stays under twice the chunk and the one
-  // before it under the chunk, within the three chunks hdf5.cpp's read budget allows for decoding (from four times,
-  // an incompressible chunk's buffer would have been four chunks).
-  std::size_t room = std::max({*buf_size, std::min(2 * bytes, largest_chunk), std::size_t{4096}});
+  const std::uint64_t expected = decoded_chunk_bytes;
+  if (expected > largest_chunk) return 0;
+  // Known: the chunk and a little room, never grown. Unknown: twice the stored size to start with, doubled when
+  // full (the last buffer under twice what the stream inflates to).
+  const std::size_t most = expected > 0 ? static_cast<std::size_t>(expected) + past_chunk : largest_chunk;
+  std::size_t room = expected > 0 ? most : std::max({*buf_size, std::min(2 * bytes, largest_chunk), std::size_t{4096}});
   auto* out = static_cast<std::uint8_t*>(H5allocate_memory(room, false));
   if (out == nullptr) return 0;
-  // The state holds ISA-L's 40 KB of tables and history: on the heap, not the stack.
-  auto state = std::make_unique<inflate_state>();
-  isal_inflate_init(state.get());
+  // ISA-L's state (tables and history, about 87 KB): one per thread, made once and initialised for each stream.
+  thread_local const std::unique_ptr<inflate_state> kept(new inflate_state);
+  inflate_state* state = kept.get();
+  isal_inflate_init(state);
   state->crc_flag = ISAL_ZLIB;  // the zlib header parsed, the Adler-32 trailer checked
   state->next_in = static_cast<std::uint8_t*>(*buf);
   state->avail_in = static_cast<std::uint32_t>(bytes);
@@ -55,11 +64,12 @@ std::size_t inflate_chunk(std::size_t bytes, std::size_t* buf_size, void** buf) 
     const std::size_t free_room = std::min<std::size_t>(room - made, std::numeric_limits<std::uint32_t>::max());
     state->next_out = out + made;
     state->avail_out = static_cast<std::uint32_t>(free_room);
-    const int status = isal_inflate(state.get());
+    const int status = isal_inflate(state);
     clear_upper_vector_state();
     made += free_room - state->avail_out;
     if (status != ISAL_DECOMP_OK) break;  // damaged, a dictionary asked for, or a wrong checksum
     if (state->block_state == ISAL_BLOCK_FINISH) {
+      if (expected > 0 && made > expected) break;  // more than its chunk: a hostile stream
       H5free_memory(*buf);
       *buf = out;
       *buf_size = room;
@@ -67,8 +77,8 @@ std::size_t inflate_chunk(std::size_t bytes, std::size_t* buf_size, void** buf) 
       return made;
     }
     if (state->avail_out != 0) break;  // the input ended before the stream did
-    if (room >= largest_chunk) break;
-    room = std::min(2 * room, largest_chunk);
+    if (room >= most) break;           // beyond its chunk, or beyond any chunk
+    room = std::min(2 * room, most);
     auto* grown = static_cast<std::uint8_t*>(H5resize_memory(out, room));
     if (grown == nullptr) break;
     out = grown;
@@ -111,6 +121,12 @@ void use_isal_inflate() {
     if (H5Z_register(&filter) < 0) throw IoError("libhdf5 refused throng's deflate filter (ISA-L's inflate)");
   });
 }
+
+DecodedChunkBytes::DecodedChunkBytes(std::uint64_t bytes) noexcept : previous_(decoded_chunk_bytes) {
+  decoded_chunk_bytes = bytes;
+}
+
+DecodedChunkBytes::~DecodedChunkBytes() { decoded_chunk_bytes = previous_; }
 
 std::size_t isal_inflated_chunks() { return inflated.load(std::memory_order_relaxed); }
 

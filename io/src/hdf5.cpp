@@ -258,10 +258,16 @@ void check_number_layout(hid_t type, const std::string& where) {
   }
 }
 
+// What reading a dataset needs besides the caller's buffer: libhdf5's working memory (require_working_memory checks
+// it), and the bytes one of its filtered chunks decodes to (0: not filtered, or not known).
+struct StorageNeeds {
+  std::uint64_t working_bytes = 0;
+  std::uint64_t decoded_chunk_bytes = 0;
+};
+
 // What the file holds of a dataset, checked: no external files, no virtual layout, known filters; the declared
-// bytes (`file_bytes`) within what the storage can expand to. Throws InputError naming the dataset. Returns the
-// working memory libhdf5 needs besides the caller's buffer to read it (require_working_memory checks it).
-std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const Extent& e, std::uint64_t file_element_size,
+// bytes (`file_bytes`) within what the storage can expand to. Throws InputError naming the dataset.
+StorageNeeds check_dataset_storage(hid_t set, const std::string& where, const Extent& e, std::uint64_t file_element_size,
                                     const ReadContext& context) {
   const Handle dcpl(H5Dget_create_plist(set));
   if (!dcpl.valid()) throw InputError(where + ": cannot read its storage properties (damaged file?)");
@@ -287,7 +293,7 @@ std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const E
   }
   const auto file_bytes = checked_product(e.count, file_element_size);
   if (!file_bytes) throw InputError(where + ": shape " + shape_text(e.dims) + " holds more bytes than a 64-bit count (damaged file?)");
-  if (!context.bounded || *file_bytes == 0) return 0;
+  if (!context.bounded || *file_bytes == 0) return {};
 
   const std::uint64_t stored = H5Dget_storage_size(set);
   if (stored > context.file_size) {
@@ -312,7 +318,7 @@ std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const E
       throw InputError(where + ": declares " + shape_text(e.dims) + " (" + format_bytes(*file_bytes) + ") but its layout stores " +
                        format_bytes(stored) + ": damaged file");
     }
-    if (layout == H5D_CONTIGUOUS) return 0;
+    if (layout == H5D_CONTIGUOUS) return {};
   }
   const auto bound = checked_sum(checked_product(stored, ratio).value_or(UINT64_MAX), storage_slack_bytes).value_or(UINT64_MAX);
   if (*file_bytes > bound) {
@@ -331,18 +337,21 @@ std::uint64_t check_dataset_storage(hid_t set, const std::string& where, const E
       throw InputError(where + ": its chunks (" + (chunk_bytes ? format_bytes(*chunk_bytes) : std::string("beyond 2^64 bytes")) +
                        " each) are larger than the " + format_bytes(stored) + " it stores can expand to: damaged or hostile file, refused before reading");
     }
-    // A filtered chunk is decoded in libhdf5's own buffer: deflate (deflate_filter.h) grows it by doubling from twice
-    // the stored size (the last one under twice the chunk) and, while it grows, the previous one is alive too; three chunks cover both.
-    // An unfiltered chunk larger than the chunk cache is read straight into the caller's buffer.
-    if (filters > 0) return checked_product(*chunk_bytes, 3).value_or(UINT64_MAX);
+    // A filtered chunk is decoded in libhdf5's own buffer: deflate (deflate_filter.h) inflates into one buffer of the
+    // chunk's size, told by DecodedChunkBytes, while the stored chunk is alive; the shuffle makes a chunk-sized copy.
+    // Three chunks cover them. An unfiltered chunk larger than the chunk cache is read straight into the caller's
+    // buffer.
+    if (filters > 0) return {checked_product(*chunk_bytes, 3).value_or(UINT64_MAX), *chunk_bytes};
   }
-  return 0;
+  return {};
 }
 
 // The working memory check_dataset_storage returned, beside what the context's budget already holds (the
 // caller's buffer charged first): a small file whose one chunk decodes to a gigabyte is refused here.
-void require_working_memory(const ReadContext& context, std::uint64_t working_bytes, const std::string& where) {
-  if (working_bytes > 0) context.budget.require(working_bytes, where, "libhdf5's buffers to decode one compressed chunk");
+// Returns the deflate filter's bound on one chunk, for the read that follows (while it lives).
+[[nodiscard]] DecodedChunkBytes require_working_memory(const ReadContext& context, const StorageNeeds& needs, const std::string& where) {
+  if (needs.working_bytes > 0) context.budget.require(needs.working_bytes, where, "libhdf5's buffers to decode one compressed chunk");
+  return DecodedChunkBytes(needs.decoded_chunk_bytes);
 }
 
 // Walks the file's global heap collections once, before the first variable-length read (see global_heap_check.h).
@@ -381,13 +390,13 @@ Array<T> read_numeric(const Group& g, ReadContext& context, const std::string& n
   if (expected_rank >= 0 && rank != expected_rank) {
     throw InputError(g.where(name) + ": has rank " + std::to_string(rank) + ", expected " + std::to_string(expected_rank));
   }
-  const std::uint64_t working = check_dataset_storage(set.id(), g.where(name), e, element, context);
+  const StorageNeeds needs = check_dataset_storage(set.id(), g.where(name), e, element, context);
   Array<T> out;
   out.shape = e.dims;
   if (!read_values) return out;  // the working memory is checked when the values are read
   const auto bytes = checked_product(e.count, sizeof(T));
   context.budget.charge(bytes.value_or(UINT64_MAX), g.where(name), shape_text(e.dims) + " × " + std::to_string(sizeof(T)) + " bytes");
-  require_working_memory(context, working, g.where(name));
+  const DecodedChunkBytes decoding = require_working_memory(context, needs, g.where(name));
   out.values.resize(e.count);
   if (e.count > 0 && H5Dread(set.id(), memory_type, H5S_ALL, H5S_ALL, context.transfer.id(), out.values.data()) < 0) {
     throw InputError(g.where(name) + ": cannot read (" + hdf5_reason() +
@@ -416,12 +425,12 @@ std::vector<std::string> read_string_data(hid_t object, bool attribute, const st
       throw InputError(where + ": declares " + shape_text(e.dims) + " strings, more than the file of " + format_bytes(context.file_size) + " holds");
     }
   }
-  const std::uint64_t working = attribute ? 0 : check_dataset_storage(object, where, e, size, context);
+  const StorageNeeds needs = attribute ? StorageNeeds{} : check_dataset_storage(object, where, e, size, context);
   if (variable) {
     check_heaps_once(object, context);
     const auto bytes = checked_sum(checked_product(e.count, sizeof(char*) + sizeof(std::string)).value_or(UINT64_MAX), context.heap_bytes);
     context.budget.charge(bytes.value_or(UINT64_MAX), where, shape_text(e.dims) + " strings");
-    require_working_memory(context, working, where);
+    const DecodedChunkBytes decoding = require_working_memory(context, needs, where);
     Handle memory = string_type();
     std::vector<char*> raw(static_cast<std::size_t>(e.count), nullptr);
     herr_t status = -1;
@@ -439,7 +448,7 @@ std::vector<std::string> read_string_data(hid_t object, bool attribute, const st
   } else {
     const auto bytes = checked_product(e.count, size);
     context.budget.charge(checked_product(bytes.value_or(UINT64_MAX), 2).value_or(UINT64_MAX), where, shape_text(e.dims) + " strings of " + std::to_string(size) + " bytes");
-    require_working_memory(context, working, where);
+    const DecodedChunkBytes decoding = require_working_memory(context, needs, where);
     std::vector<char> raw(static_cast<std::size_t>(*bytes), '\0');
     Handle memory(H5Tcopy(H5T_C_S1));
     H5Tset_size(memory.id(), size);
@@ -654,12 +663,12 @@ Array<double> Group::read_compound_member(const std::string& name, const std::st
   Handle space(H5Dget_space(set.id()));
   const Extent e = extent_of(space.id(), where(name));
   if (e.dims.size() != 1) throw InputError(where(name) + ": has rank " + std::to_string(e.dims.size()) + ", expected 1 (a table of rows)");
-  const std::uint64_t working = check_dataset_storage(set.id(), where(name), e, H5Tget_size(type.id()), context);
+  const StorageNeeds needs = check_dataset_storage(set.id(), where(name), e, H5Tget_size(type.id()), context);
   Array<double> out;
   out.shape = e.dims;
   context.budget.charge(checked_product(e.count, sizeof(double)).value_or(UINT64_MAX), where(name) + " member " + member,
                         shape_text(e.dims) + " × 8 bytes");
-  require_working_memory(context, working, where(name));
+  const DecodedChunkBytes decoding = require_working_memory(context, needs, where(name));
   out.values.resize(e.count);
   Handle memory(H5Tcreate(H5T_COMPOUND, sizeof(double)));
   if (!memory.valid() || H5Tinsert(memory.id(), member.c_str(), 0, H5T_NATIVE_DOUBLE) < 0) {

@@ -2,6 +2,7 @@
 #include <throng/io/input_crash.h>
 
 #include <hdf5.h>
+#include <isa-l/igzip_lib.h>
 
 #include <array>
 #include <atomic>
@@ -26,12 +27,12 @@ std::atomic<std::uint64_t> openings{0};
 std::atomic<bool> in_handler{false};
 const std::string reserved;  // a slot being taken (not yet a message)
 
-// The executable code of libhdf5 and of the C library, [begin, end) each: a fault at an instruction elsewhere is
-// not libhdf5's.
+// The executable code of libhdf5, of the C library and of ISA-L (whose inflate decodes libhdf5's deflated chunks,
+// deflate_filter.h), [begin, end) each: a fault at an instruction elsewhere is not libhdf5's.
 struct CodeRange {
   std::uintptr_t begin = 0, end = 0;
 };
-std::array<CodeRange, 2> library_code{};
+std::array<CodeRange, 3> library_code{};
 
 constexpr int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL};
 
@@ -125,6 +126,7 @@ void install_input_crash_report() {
 void detail::install_input_crash_handlers() {
   library_code[0] = code_of(reinterpret_cast<const void*>(&H5open));
   library_code[1] = code_of(reinterpret_cast<const void*>(&::write));
+  library_code[2] = code_of(reinterpret_cast<const void*>(&isal_inflate));
   stack_t stack{};
   stack.ss_sp = handler_stack;
   stack.ss_size = sizeof handler_stack;

@@ -42,12 +42,12 @@ TEST_CASE("help and version exit 0, a bad command line exits 2") {
 
 // The launcher (drivers/launcher.cpp) against a stand-in throng-main beside a copy of it: a script that prints its
 // process id, arguments and the variables the launcher decides.
-TEST_CASE("throng runs throng-main in its own place, once, with its arguments and the huge-page tunable decided") {
-  const std::filesystem::path folder = test::scratch_dir("launcher");
+TEST_CASE("throng runs throng-main in its own place with its arguments and the huge-page tunable decided") {
+  const std::filesystem::path folder = std::filesystem::canonical(test::scratch_dir("launcher"));
   std::filesystem::copy_file(throng_program(), folder / "throng");
   const std::filesystem::path stand_in = write_file(
       folder / "throng-main",
-      "#!/bin/sh\necho \"pid=$$ args=$*\"\necho \"tunables=$GLIBC_TUNABLES marker=$THRONG_HUGE_PAGES_RESTARTED\"\n");
+      "#!/bin/sh\necho \"pid=$$ args=$(printf '[%s]' \"$@\")\"\necho \"tunables=$GLIBC_TUNABLES marker=$THRONG_HUGE_PAGES_RESTARTED\"\n");
   std::filesystem::permissions(stand_in, std::filesystem::perms::owner_all);
   std::ifstream mode_file("/sys/kernel/mm/transparent_hugepage/enabled");
   const std::string mode((std::istreambuf_iterator<char>(mode_file)), std::istreambuf_iterator<char>());
@@ -61,7 +61,7 @@ TEST_CASE("throng runs throng-main in its own place, once, with its arguments an
   REQUIRE(run_command("sh -c 'echo shell=$$; exec " + clean + (elsewhere / "throng").string() + " sketch \"a b\" -q'", &out) == 0);
   INFO(out);
   const std::string shell = out.substr(6, out.find('\n') - 6);
-  CHECK_THAT(out, Contains("pid=" + shell + " args=sketch a b -q\n"));  // the same process: signals reach it
+  CHECK_THAT(out, Contains("pid=" + shell + " args=[sketch][a b][-q]\n"));  // the same process: signals reach it
   CHECK_THAT(out, Contains(asks ? "tunables=glibc.malloc.hugetlb=1 marker=1\n" : "tunables= marker=\n"));
   // A user's choice is kept: their tunables, or huge pages turned off.
   REQUIRE(run_command("env -u THRONG_HUGE_PAGES_RESTARTED GLIBC_TUNABLES=glibc.malloc.arena_max=2 " + (folder / "throng").string(), &out) == 0);

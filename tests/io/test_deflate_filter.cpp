@@ -2,7 +2,11 @@
 // out as zlib's compress2 makes it (libhdf5 1.10's own filter), every chunk is inflated back through ISA-L, and a
 // damaged stream fails the read instead of giving wrong values.
 #include "deflate_filter.h"
+#include "check_throws.h"
 #include "test_paths.h"
+
+#include <throng/core/errors.h>
+#include <throng/io/hdf5.h>
 
 #include <catch2/catch.hpp>
 #include <hdf5.h>
@@ -145,11 +149,29 @@ TEST_CASE("a damaged deflate stream fails the read, and a chunk that inflates a 
   cases.push_back({"its Adler-32 changed", good, false});
   cases.back().stream.back() ^= 0x01;
   cases.push_back({"cut short", std::vector<unsigned char>(good.begin(), good.end() - 6), false});
+  for (int cut = 1; cut <= 4; ++cut) {  // into the Adler-32 only: every deflate block is there
+    cases.push_back({"its Adler-32 cut short", std::vector<unsigned char>(good.begin(), good.end() - cut), false});
+  }
+  {  // a stream that needs a preset dictionary (zlib's FDICT), which no HDF5 chunk has
+    z_stream z{};
+    REQUIRE(deflateInit(&z, 6) == Z_OK);
+    const unsigned char dictionary[] = "throng";
+    REQUIRE(deflateSetDictionary(&z, dictionary, sizeof dictionary) == Z_OK);
+    std::vector<unsigned char> out(compressBound(chunk * sizeof(double)) + 64);
+    z.next_in = const_cast<unsigned char*>(bytes);
+    z.avail_in = static_cast<uInt>(chunk * sizeof(double));
+    z.next_out = out.data();
+    z.avail_out = static_cast<uInt>(out.size());
+    REQUIRE(deflate(&z, Z_FINISH) == Z_STREAM_END);
+    out.resize(z.total_out);
+    deflateEnd(&z);
+    cases.push_back({"a stream that needs a preset dictionary", out, false});
+  }
   cases.push_back({"a wrong zlib header", good, false});
   cases.back().stream[1] ^= 0x01;  // the header's check bits no longer a multiple of 31
   cases.push_back({"bytes that are not deflate", std::vector<unsigned char>(good.size(), 0xA5), false});
   for (const Case& c : cases) {
-    INFO(c.name);
+    INFO(c.name << " (" << c.stream.size() << " bytes)");
     OneDataset d(dir / "damaged.h5", chunk, chunk, false, 6);
     const hsize_t offset = 0;
     REQUIRE(H5Dwrite_chunk(d.dataset, H5P_DEFAULT, 0, &offset, c.stream.size(), c.stream.data()) >= 0);
@@ -164,4 +186,45 @@ TEST_CASE("a damaged deflate stream fails the read, and a chunk that inflates a 
       CHECK(status < 0);
     }
   }
+}
+
+TEST_CASE("a stream that inflates beyond its chunk fails the read once the reader has said the chunk's size") {
+  use_isal_inflate();
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const auto dir = test::scratch_dir("io_deflate_filter_beyond");
+  constexpr std::size_t chunk = 1024;  // 8 KB of doubles a chunk, but a stream of 64 KB of zeros
+  const std::vector<unsigned char> zeros(64 * 1024, 0);
+  const std::vector<unsigned char> stream = zlib_compressed(zeros.data(), zeros.size(), 6);
+  {
+    OneDataset d(dir / "beyond.h5", chunk, chunk, false, 6);
+    const hsize_t offset = 0;
+    REQUIRE(H5Dwrite_chunk(d.dataset, H5P_DEFAULT, 0, &offset, stream.size(), stream.data()) >= 0);
+    H5Dclose(d.dataset);
+    d.dataset = H5Dopen2(d.file, "values", H5P_DEFAULT);
+    herr_t status = 0;
+    {
+      const throng::h5::detail::DecodedChunkBytes told(chunk * sizeof(double));
+      (void)d.read(chunk, &status);
+      CHECK(status < 0);
+      // An honest chunk of the same dataset still reads under the same bound.
+    }
+  }
+  {
+    OneDataset d(dir / "beyond.h5", chunk, chunk, false, 6);
+    std::vector<double> values(chunk, 2.5);
+    REQUIRE(H5Dwrite(d.dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0);
+    const throng::h5::detail::DecodedChunkBytes told(chunk * sizeof(double));
+    herr_t status = -1;
+    CHECK(d.read(chunk, &status) == values);
+    CHECK(status >= 0);
+  }
+  // Through throng's reader, which tells the filter the chunk's size itself: the read is refused with the dataset
+  // named, not grown to what the stream holds.
+  {
+    OneDataset d(dir / "beyond.h5", chunk, chunk, false, 6);
+    const hsize_t offset = 0;
+    REQUIRE(H5Dwrite_chunk(d.dataset, H5P_DEFAULT, 0, &offset, stream.size(), stream.data()) >= 0);
+  }
+  const h5::File file = h5::File::open(dir / "beyond.h5");
+  CHECK_THROWS_AS_WITH(file.root().read_doubles("values", 1), InputError, Catch::Matchers::Contains("beyond.h5:/values"));
 }

@@ -5,8 +5,8 @@
 // buffer): a crafted file can make it read through a wild pointer, and the program died with "Segmentation
 // fault" (exit 139) and left a core. throng checks what it can first (hdf5.h: bounds, heaps, layouts, filters).
 // For the rest, install_input_crash_report() handles SIGSEGV, SIGBUS, SIGFPE and SIGILL:
-//  - a fault raised by the processor (not a signal sent with kill) at an instruction of libhdf5 or of the C
-//    library (where libhdf5's copies run) while a ReadingInput lives: every pending temporary output is removed
+//  - a fault raised by the processor (not a signal sent with kill) at an instruction of libhdf5, of the C
+//    library (where libhdf5's copies run) or of ISA-L (which inflates libhdf5's chunks) while a ReadingInput lives: every pending temporary output is removed
 //    (atomic_output.h), a message naming the input opened last is printed, and the program exits 3 (invalid
 //    input data);
 //  - anything else (a fault in throng's own code, a signal sent by another process): the pending outputs are
