@@ -99,7 +99,14 @@ bool all_zero(const unsigned char* data, std::size_t bytes) {
 // more than NoisePlanes holds, or not of whole planes. deflate() stores those planes; structured_planes() skips them.
 constexpr std::size_t most_planes = 16;
 using NoisePlanes = std::array<bool, most_planes>;
-NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements);
+NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements) {
+  NoisePlanes noise{};
+  const std::size_t n = planes > 0 ? bytes / planes : bytes;
+  if (planes > 1 && planes <= most_planes && n * planes == bytes) {
+    for (std::size_t j = 0; j < planes; ++j) noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
+  }
+  return noise;
+}
 
 }  // namespace
 
@@ -167,17 +174,6 @@ std::size_t ChunkDeflater::bound(std::size_t bytes, std::size_t planes) {
   // the zlib header (2 bytes) and Adler-32 (4).
   return bytes + 5 * (bytes / stored_block_bytes + 1) + planes * (5 + ISAL_DEF_MAX_HDR_SIZE + 5) + 6;
 }
-
-namespace {
-NoisePlanes noise_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes, std::size_t row_elements) {
-  NoisePlanes noise{};
-  const std::size_t n = planes > 0 ? bytes / planes : bytes;
-  if (planes > 1 && planes <= most_planes && n * planes == bytes) {
-    for (std::size_t j = 0; j < planes; ++j) noise[j] = looks_like_noise(chunk + j * n, n, row_elements);
-  }
-  return noise;
-}
-}  // namespace
 
 std::vector<unsigned char> structured_planes(const unsigned char* chunk, std::size_t bytes, std::size_t planes,
                                              std::size_t row_elements) {

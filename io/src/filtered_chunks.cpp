@@ -169,6 +169,16 @@ unsigned char* shuffled_room(ThreadBuffers& buffers, std::size_t bytes, std::uni
   return buffers.shuffled.data();
 }
 
+// The chunk whose rows start at `source` (`rows` of them, fewer than chunk_rows only at the dataset's end): those
+// rows, or at the end `padded` filled with them and then zero bytes, libhdf5's fill, as the chunk is stored.
+const unsigned char* whole_chunk(const unsigned char* source, std::uint64_t rows, const ChunkedLayout& layout,
+                                 std::vector<unsigned char>& padded) {
+  if (rows >= layout.chunk_rows) return source;
+  padded.assign(layout.chunk_rows * layout.row_bytes, 0);
+  std::memcpy(padded.data(), source, rows * layout.row_bytes);
+  return padded.data();
+}
+
 // Codes are made for chunks whose structured planes are at most this many bytes. What they save is ISA-L's level 1
 // building codes for each chunk, a cost per chunk; its level 0 codes a byte more slowly than level 1 (perf of
 // `bench_sketch_command`: ISA-L's samples 590 -> 455 with codes at 10,000 agents, structured planes of 20 KB a
@@ -185,14 +195,8 @@ void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uin
   const std::uint64_t C = layout.components;
   if (C <= 1 || layout.level > 1 || layout.element_size < 2) return;
   codes.by_component.assign(C, nullptr);
-  const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows);
   std::vector<unsigned char> padded;
-  const unsigned char* chunk = data;
-  if (rows < layout.chunk_rows) {  // the edge chunk, padded as compress pads it
-    padded.assign(layout.chunk_rows * layout.row_bytes, 0);
-    std::memcpy(padded.data(), data, rows * layout.row_bytes);
-    chunk = padded.data();
-  }
+  const unsigned char* chunk = whole_chunk(data, std::min(layout.chunk_rows, layout.rows), layout, padded);
   const std::size_t n = chunk_bytes / layout.element_size;
   std::vector<unsigned char> shuffled(chunk_bytes);
   for (std::uint64_t c = 0; c < C; ++c) {
@@ -254,15 +258,8 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       const std::uint64_t row0 = (group.first + k) / C * layout.chunk_rows, component = (group.first + k) % C;
       const std::uint64_t rows = std::min(layout.chunk_rows, layout.rows - row0);
       const auto* source = reinterpret_cast<const unsigned char*>(data) + row0 * layout.row_bytes;
-      const unsigned char* chunk = source;
-      if (rows < layout.chunk_rows) {  // the edge chunk: its rows, then zero bytes (libhdf5's fill)
-        if (padded_row0 != row0) {
-          padded.assign(rows_bytes, 0);
-          std::memcpy(padded.data(), source, rows * layout.row_bytes);
-          padded_row0 = row0;
-        }
-        chunk = padded.data();
-      }
+      const unsigned char* chunk = padded_row0 == row0 ? padded.data() : whole_chunk(source, rows, layout, padded);
+      if (rows < layout.chunk_rows) padded_row0 = row0;
       // A single-component chunk equal to the thread's last one: its stream again.
       const bool reusable = C == 1 && chunk_bytes <= reused_chunk_bytes;
       if (reusable && buffers.last_chunk.size() == chunk_bytes && buffers.last_element_size == layout.element_size &&
