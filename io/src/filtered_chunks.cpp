@@ -94,13 +94,6 @@ void shuffle_elements_of(const unsigned char* in, std::size_t n, std::size_t str
   }
 }
 
-void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride, unsigned char* out) {
-  switch (element_size) {
-    case 8: return shuffle_elements_of<8>(in, n, stride, out);
-    case 4: return shuffle_elements_of<4>(in, n, stride, out);
-    default: return shuffle_bytes(in, n, element_size, stride, out);  // sizes throng does not write
-  }
-}
 
 // Whether the n elements of ElementSize bytes taken `stride` bytes apart from `in` are all zero bytes; it stops at
 // the first that is not (a component that varies: at once).
@@ -218,6 +211,14 @@ void make_codes(const unsigned char* data, const ChunkedLayout& layout, std::uin
 }
 
 }  // namespace
+
+void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride, unsigned char* out) {
+  switch (element_size) {
+    case 8: return shuffle_elements_of<8>(in, n, stride, out);
+    case 4: return shuffle_elements_of<4>(in, n, stride, out);
+    default: return shuffle_bytes(in, n, element_size, stride, out);  // sizes throng does not write
+  }
+}
 
 void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std::string& where,
                    const std::function<void(std::uint64_t first_row, std::uint64_t component,

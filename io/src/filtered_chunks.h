@@ -47,6 +47,11 @@ struct ChunkedLayout {
   DatasetCodes* codes = nullptr;
 };
 
+/// The shuffle filter (H5Z_filter_shuffle) of n elements of `element_size` bytes taken `stride` bytes apart from
+/// `in` (stride == element_size: contiguous; larger: one component of rows) into `out` (n × element_size bytes):
+/// byte j of element i goes to j × n + i. SSE2 for elements of 4 and 8 bytes.
+void shuffle(const unsigned char* in, std::size_t n, std::size_t element_size, std::size_t stride, unsigned char* out);
+
 /// Filters `data` (rows × row_bytes bytes, already in the dataset's file type) chunk by chunk as a dataset of that
 /// layout stores it (deflate level 1 with components: each component's structured planes with the codes of its
 /// first chunk, DatasetCodes), and calls write(first row of the chunk, its component (0 without components), its filtered
