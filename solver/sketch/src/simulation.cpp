@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "agent_repulsion.h"
+#include "move_lanes.h"
 #include "neighbour_grid.h"
 #include "obstacle_field.h"
 
@@ -61,28 +62,6 @@ struct Summary {
     n_standing += o.n_standing;
     largest_avoidance = std::max(largest_avoidance, o.largest_avoidance);
     bounds.extend(o.bounds);
-  }
-};
-
-// The facing step of sketch.h "Facing and actions", without trigonometry (it runs for every agent and step).
-struct FacingStep {
-  double follow;          // 1 − exp(−Δt/τ_facing)
-  double cos_turn, sin_turn;  // of the largest turn per step, facing_turn_rate_rad_s Δt
-
-  // The facing h (unit) after a step with walking velocity u: slower than facing_standing_speed_m_s, h itself
-  // (exactly); else h moved toward u's direction by `follow` of the difference and renormalised, turned by at
-  // most the largest turn (then exactly that far, toward the side it was going).
-  // Within 1e-3 rad (0.06°) of û, h is kept too: invisible, and it spares the square roots for the agents that
-  // walk straight on (without this the step costs a third more, bench/sketch BM_Step).
-  [[nodiscard]] Eigen::Vector2d next(const Eigen::Vector2d& h, const Eigen::Vector2d& u) const {
-    const double speed2 = u.squaredNorm();
-    if (speed2 < facing_standing_speed_m_s * facing_standing_speed_m_s) return h;
-    const double along = h.dot(u), across = h.x() * u.y() - h.y() * u.x();
-    if (along > 0 && across * across <= 1e-6 * speed2) return h;
-    const Eigen::Vector2d g = (h + follow * (u / std::sqrt(speed2) - h)).normalized();  // |g| ≥ 1 − 2 follow > 0
-    if (h.dot(g) >= cos_turn) return g;
-    const double side = h.x() * g.y() - h.y() * g.x() >= 0 ? 1.0 : -1.0;
-    return Eigen::Vector2d(h.x() * cos_turn - side * h.y() * sin_turn, side * h.x() * sin_turn + h.y() * cos_turn).normalized();
   }
 };
 
@@ -365,28 +344,21 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   const double w_traj = options.trajectory_weight, w_avoid = options.avoid_weight, w_block = options.obstacle_weight;
   const double dt = options.time_step_s;
   const bool filtered = options.direction_filter_s > 0;
-  const double relax = filtered ? -std::expm1(-dt / options.direction_filter_s) : 1.0;  // 1 − exp(−Δt/τ)
-  // A change of the walking velocity over one step, at most max_acceleration Δt long (sketch.h).
-  const double largest_change = options.max_acceleration_m_s2 > 0 ? options.max_acceleration_m_s2 * dt : 0.0;
+  // A change of the walking velocity over one step is at most max_acceleration Δt long (sketch.h).
+  const detail::MoveConstants constants{dt,
+                                        filtered,
+                                        filtered ? -std::expm1(-dt / options.direction_filter_s) : 1.0,
+                                        options.max_acceleration_m_s2 > 0 ? options.max_acceleration_m_s2 * dt : 0.0,
+                                        -std::expm1(-dt / facing_filter_s),
+                                        std::cos(facing_turn_rate_rad_s * dt),
+                                        std::sin(facing_turn_rate_rad_s * dt)};
+  const detail::MoveLanes& lanes = detail::move_lanes();
   const bool has_obstacles = !obstacles.empty();
-  // change, scaled down to largest_change when longer. Without a branch on the length (whether an agent is at
-  // its acceleration bound changes from step to step): min(1, L/n) is L/n when n > L and exactly 1 otherwise, and
-  // change × 1 is change, so the bits are those of the branch.
-  auto bounded = [largest_change](const Eigen::Vector2d& change) -> Eigen::Vector2d {
-    if (!(largest_change > 0)) return change;
-    return change * std::min(1.0, largest_change / change.norm());
-  };
-  // The filtered walking velocity `before` changed by `change` (bounded), then slowed toward obstacles ahead so
-  // the agent can stop short of them at max_acceleration, and stepping aside for moving ones: without it, an
-  // agent walking at an obstacle turns only within obstacle_distance of it and keep_clear stops it dead at the
-  // boundary (10.7 m/s² measured on sketch-large at its pillars), and a cart shoves it.
-  const bool braking = filtered && largest_change > 0 && has_obstacles;
-  auto walk = [&](const Eigen::Vector2d& p, const Eigen::Vector2d& before, const Eigen::Vector2d& change) {
-    const Eigen::Vector2d u = before + bounded(change);
-    return braking ? obstacles.brake(p, t0, t1, u, options.max_acceleration_m_s2) : u;
-  };
-  const FacingStep facing{-std::expm1(-dt / facing_filter_s), std::cos(facing_turn_rate_rad_s * dt),
-                          std::sin(facing_turn_rate_rad_s * dt)};
+  // Filtered, with an acceleration bound: the walking velocity wanted is slowed toward obstacles ahead so the agent
+  // can stop short of them at max_acceleration, and steps aside for moving ones: without it, an agent walking at
+  // an obstacle turns only within obstacle_distance of it and keep_clear stops it dead at the boundary (10.7 m/s²
+  // measured on sketch-large at its pillars), and a cart shoves it.
+  const bool braking = filtered && constants.largest_change > 0 && has_obstacles;
   const bool remove_at_end = options.end_of_path == EndOfPath::remove;
   // The crowd standing at the end covers about a disc of this radius around the end (hexagonal packing at the
   // last standard distance): walking agents that reach it, R beyond, join it (EndOfPath::stop).
@@ -400,15 +372,14 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
   // They go in blocks of 64 through four passes: the forces (neighbour and obstacle searches, branchy),
   // the moves, the facings, then the targets. A move and a facing are each a chain of square roots and divisions
   // per agent: in short loops of their own the processor overlaps several agents' chains, where in one loop with
-  // the searches it could not (bench/sketch BM_Step, 10,000 agents on 1 thread: 293 → 209 ms). Each pass does for
-  // an agent the same operations in the same order as one loop over the agents would (each pass reads only the
-  // state at the step's start, the grid and the block's own entries), so the bits are the same.
-  enum class Move : std::uint8_t { along_force, make_room, stay };
-  constexpr std::size_t block_size = 64;
-  std::array<Move, block_size> move{};
-  std::array<double, block_size> fx{}, fy{};  // the force (walking) or the overlap (standing), pass 1
-  std::array<double, block_size> gx{}, gy{};  // the target (walking), pass 1
-  std::array<double, block_size> qx{}, qy{}, ux{}, uy{};  // the new position and walking velocity, pass 2
+  // the searches it could not (bench/sketch BM_Step, 10,000 agents on 1 thread: 293 → 209 ms), and four agents
+  // share each vector operation (move_lanes.h). Each pass does for an agent the same operations in the same order
+  // as one loop over the agents would (each pass reads only the state at the step's start, the grid and the
+  // block's own entries), so the bits do not depend on how the agents are cut into tasks.
+  using detail::MoveKind;
+  detail::MoveBlock block;
+  constexpr std::size_t block_size = detail::MoveBlock::size;
+  std::array<double, block_size> gx{}, gy{};    // the target (walking), pass 1
   std::array<std::int8_t, block_size> sides{};  // the side round an obstacle (walking), pass 1
   for (std::size_t first = begin; first < end; first += block_size) {
     const std::size_t count = std::min(block_size, end - first);
@@ -421,8 +392,9 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       const std::uint32_t k = s.k[j];
       Eigen::Vector2d force = Eigen::Vector2d::Zero();
       sides[i] = 0;
+      MoveKind kind = MoveKind::stay;  // removed, or arrived with EndOfPath::remove (removed in pass 4)
       if (s.status[j] == walking) {
-        move[i] = Move::along_force;
+        kind = MoveKind::along_force;
         // Eq. 14: pull toward the target beyond R.
         const Eigen::Vector2d goal = target(j, k);
         gx[i] = goal.x();
@@ -444,67 +416,57 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
         force = pull + w_block * block_push;
         if (w_avoid > 0) force += w_avoid * detail::agent_repulsion(grid, slot, p, avoidance(j, k));
       } else if (s.status[j] == arrived && !remove_at_end) {
-        move[i] = Move::make_room;
+        kind = MoveKind::make_room;
         // Standing agents make room: half their overlap with agents and obstacles, at most v Δt (see sketch.h).
         if (w_avoid > 0) force += detail::agent_repulsion(grid, slot, p, avoidance(j, k));
         if (has_obstacles && w_block > 0) force += obstacles.push(p, t0);
-      } else {
-        move[i] = Move::stay;  // removed, or arrived with EndOfPath::remove (removed in pass 4)
       }
-      fx[i] = force.x();
-      fy[i] = force.y();
+      block.kind[i] = static_cast<std::int64_t>(kind);
+      block.fx[i] = force.x();
+      block.fy[i] = force.y();
+      block.speed[i] = speed[k];
+      block.px[i] = p.x();
+      block.py[i] = p.y();
+      block.ux[i] = s.ux[j];
+      block.uy[i] = s.uy[j];
+      block.hx[i] = s.hx[j];
+      block.hy[i] = s.hy[j];
+      block.fastest[i] = fastest[j];
     }
 
     // 2. The move (Eq. 21–22, filtered as in sketch.h), kept clear of obstacles.
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto j = static_cast<std::uint32_t>(first + i);
-      const Eigen::Vector2d p(s.x[j], s.y[j]);
-      const std::uint32_t k = s.k[j];
-      const Eigen::Vector2d force(fx[i], fy[i]);
-      Eigen::Vector2d q = p;
-      Eigen::Vector2d u = Eigen::Vector2d::Zero();
-      if (move[i] != Move::stay) {
-        const Eigen::Vector2d before(s.ux[j], s.uy[j]);
-        if (move[i] == Move::along_force) {
-          // Move v_k Δt along F; F = 0 stays. Filtered: u relaxes toward v_k F/|F|.
-          const double f = force.norm();
-          if (!filtered) {
-            if (f > 0) q = p + (speed[k] * dt / f) * force;
-          } else {
-            const Eigen::Vector2d wanted = f > 0 ? Eigen::Vector2d((speed[k] / f) * force) : Eigen::Vector2d::Zero();
-            q = p + dt * walk(p, before, relax * (wanted - before));
-          }
-        } else {
-          const double length = 0.5 * force.norm();
-          const Eigen::Vector2d room =
-              length > 0 ? Eigen::Vector2d((std::min(length, speed[k] * dt) / force.norm()) * force) : Eigen::Vector2d::Zero();
-          if (!filtered) {
-            q = p + room;
-          } else {  // the walking velocity left at arrival dies away; make-room moves are filtered alike (sketch.h)
-            q = p + dt * walk(p, before, relax * (room / dt - before));
-          }
-        }
-        if (has_obstacles && !obstacles.keep_clear(p, q, t1)) ++failures;
-        u = (q - p) / dt;  // filtered: the walking velocity; the paper's rule: the step's move (for the facing)
+    lanes.wanted_velocities(constants, block, count);
+    if (braking) {
+      for (std::size_t i = 0; i < count; ++i) {
+        if (block.kind[i] == static_cast<std::int64_t>(MoveKind::stay)) continue;
+        const Eigen::Vector2d u = obstacles.brake(Eigen::Vector2d(block.px[i], block.py[i]), t0, t1,
+                                                  Eigen::Vector2d(block.wx[i], block.wy[i]), options.max_acceleration_m_s2);
+        block.wx[i] = u.x();
+        block.wy[i] = u.y();
       }
-      qx[i] = q.x();
-      qy[i] = q.y();
-      next.x[j] = q.x();
-      next.y[j] = q.y();
-      next.ux[j] = u.x();
-      next.uy[j] = u.y();
-      ux[i] = u.x();
-      uy[i] = u.y();
+    }
+    lanes.moved_places(constants, block, count);
+    if (has_obstacles) {
+      for (std::size_t i = 0; i < count; ++i) {
+        if (block.kind[i] == static_cast<std::int64_t>(MoveKind::stay)) continue;
+        Eigen::Vector2d q(block.qx[i], block.qy[i]);
+        if (!obstacles.keep_clear(Eigen::Vector2d(block.px[i], block.py[i]), q, t1)) ++failures;
+        block.qx[i] = q.x();
+        block.qy[i] = q.y();
+      }
     }
 
-    // 3. The facing, in a loop of its own so that several agents' square-root chains overlap.
+    // 3. The step's velocity (filtered: the walking velocity; the paper's rule: the move over Δt) and facing.
+    lanes.velocities_and_facings(constants, block, count);
     for (std::size_t i = 0; i < count; ++i) {
-      const auto j = static_cast<std::uint32_t>(first + i);
-      const Eigen::Vector2d u(ux[i], uy[i]);
-      const Eigen::Vector2d h = facing.next(Eigen::Vector2d(s.hx[j], s.hy[j]), u);
-      next.hx[j] = h.x();
-      next.hy[j] = h.y();
-      fastest[j] = std::max(fastest[j], u.squaredNorm());  // agent j's own entry: no other task writes it
+      const std::size_t j = first + i;
+      next.x[j] = block.qx[i];
+      next.y[j] = block.qy[i];
+      next.ux[j] = block.vx[i];
+      next.uy[j] = block.vy[i];
+      next.hx[j] = block.nx[i];
+      next.hy[j] = block.ny[i];
+      fastest[j] = block.fastest[i];  // agent j's own entry: no other task writes it
     }
 
     // 4. Target advancement (after the move, as in the paper; plus "passed", see sketch.h). With
@@ -514,7 +476,7 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
       const std::size_t slot = slot_of[j];
       std::uint32_t k = s.k[j];
       std::uint8_t status = s.status[j];
-      const Eigen::Vector2d q(qx[i], qy[i]);
+      const Eigen::Vector2d q(block.qx[i], block.qy[i]);
       if (status == walking) {
         bool joins = false;
         if (end_reach > R) {
