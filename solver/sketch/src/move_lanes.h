@@ -24,7 +24,7 @@ enum class MoveKind : std::int64_t {
 };
 
 /// One block of agents, lane i = the block's i-th agent. Entries past the block's count are computed on and
-/// never read; they start as zeros so that nothing uninitialised is computed on.
+/// never read: zeros, or an earlier block's values (the block is reused), never uninitialised.
 struct MoveBlock {
   static constexpr std::size_t size = 64;  // a multiple of 4
   // In (pass 1): the kind, the force F (walking) or overlap (standing), v_k, the place p, the walking velocity u
@@ -52,6 +52,7 @@ struct MoveConstants {
   double largest_change;  // max_acceleration Δt, 0 for no bound (filtered)
   double follow;          // 1 − exp(−Δt/τ_facing)
   double cos_turn, sin_turn;  // of the largest turn per step, facing_turn_rate_rad_s Δt
+  double standing_speed;  // facing_standing_speed_m_s: slower, the facing is kept
 };
 
 /// The three steps, in this order, with the obstacle rules between them (simulation.cpp): each reads the block's
@@ -65,14 +66,14 @@ struct MoveLanes {
   /// p for `stay`.
   void (*moved_places)(const MoveConstants&, MoveBlock&, std::size_t count) noexcept;
   /// v = (q − p)/Δt (0 for `stay`), fastest = max(fastest, |v|²), and the facing n after h with velocity v:
-  /// h itself below facing_standing_speed_m_s or within 1e-3 rad of v's direction; else h moved toward v̂ by
+  /// h itself below standing_speed or within 1e-3 rad of v's direction; else h moved toward v̂ by
   /// `follow` of the difference and renormalised (|g| ≥ 1 − 2 follow > 0), turned by at most the largest turn (then
   /// exactly that far, toward the side it was going). Kept within 1e-3 rad (0.06°, invisible): agents walking
   /// straight on skip the square roots (a third of the step without it, bench/sketch BM_Step).
   void (*velocities_and_facings)(const MoveConstants&, MoveBlock&, std::size_t count) noexcept;
 };
 
-/// The lanes for this processor: AVX2 where it has it, SSE2 elsewhere (the same bits).
+/// The lanes for this processor, chosen on the first call: AVX2 where it has it, SSE2 elsewhere (the same bits).
 [[nodiscard]] const MoveLanes& move_lanes() noexcept;
 
 namespace sse2 {

@@ -211,7 +211,7 @@ Simulation::Impl::Impl(Course course_in, AgentParameters agents_in, Scene scene_
   }
   speed = course.speed;
   // Filtered, with an acceleration bound: agents brake for obstacles from the stopping distance at the fastest
-  // closing speed (walking plus the fastest obstacle), plus one step's move (see `walk` in advance()).
+  // closing speed (walking plus the fastest obstacle), plus one step's move (see the braking in advance()).
   if (options.direction_filter_s > 0 && options.max_acceleration_m_s2 > 0 && !scene.obstacles.empty()) {
     const double v = *std::max_element(speed.begin(), speed.end()) + obstacles.fastest_boundary_speed();
     obstacles.look_ahead(v * v / (2.0 * options.max_acceleration_m_s2) + v * options.time_step_s);
@@ -351,7 +351,8 @@ void Simulation::Impl::advance(std::size_t begin, std::size_t end, double t0, do
                                         options.max_acceleration_m_s2 > 0 ? options.max_acceleration_m_s2 * dt : 0.0,
                                         -std::expm1(-dt / facing_filter_s),
                                         std::cos(facing_turn_rate_rad_s * dt),
-                                        std::sin(facing_turn_rate_rad_s * dt)};
+                                        std::sin(facing_turn_rate_rad_s * dt),
+                                        facing_standing_speed_m_s};
   const detail::MoveLanes& lanes = detail::move_lanes();
   const bool has_obstacles = !obstacles.empty();
   // Filtered, with an acceleration bound: the walking velocity wanted is slowed toward obstacles ahead so the agent
