@@ -3,7 +3,8 @@
 // signals), once.
 //
 // Why a launcher: glibc reads its huge-page tunable only when a program starts, so throng-main alone restarts
-// itself to set it, and that loads and relocates its 113 shared libraries (PETSc, HDF5, MPI, ...) a second time:
+// itself to set it, and that loads and relocates its shared libraries (113 then, PETSc's among them; 65 since the
+// petsc backend became a plugin, linalg/src/petsc_plugin.h) a second time:
 // `throng --version` took 0.15-0.20 s against 0.07-0.10 s without the restart, on every command. This launcher
 // (27 KB) links only the C and C++ runtimes, so its own start costs about a millisecond.
 //

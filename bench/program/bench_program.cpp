@@ -1,5 +1,6 @@
 // How long `throng --version` takes from start to exit: the cost every command pays before its work, almost all of
-// it the dynamic loader bringing in the program's 113 shared libraries. Three ways of starting:
+// it the dynamic loader bringing in the program's 65 shared libraries (113 before the petsc backend became a plugin
+// loaded only by the solves that ask for it: solver/linalg/src/petsc_plugin.h). Three ways of starting:
 //   launcher    `throng` as users run it: the launcher sets glibc's huge-page tunable and executes throng-main once
 //   restarting  throng-main alone, which restarts itself to set the tunable (every command before the launcher)
 //   one_load    throng-main with THRONG_HUGE_PAGES=0: one load, no huge pages (the floor)

@@ -75,6 +75,16 @@ TEST_CASE("throng runs throng-main in its own place with its arguments and the h
   CHECK_THAT(out, Contains("throng: cannot run " + (folder / "throng-main").string() + " (No such file or directory)"));
 }
 
+// The petsc backend is a plugin the program loads when a solve asks for it (solver/linalg/src/petsc_plugin.h):
+// other commands start without PETSc's libraries (test_edit_cli.cpp edits with `--backend petsc` through it).
+TEST_CASE("throng starts without PETSc's libraries") {
+  std::string out;
+  REQUIRE(run_command("LD_DEBUG=libs " + throng_program().string() + " --version", &out) == 0);
+  CHECK_THAT(out, Contains("throng 0."));
+  CHECK_THAT(out, Contains("libhdf5"));  // the dynamic loader's log of the libraries it loads
+  CHECK_THAT(out, !Contains("libpetsc") && !Contains("libHYPRE") && !Contains("libdmumps"));
+}
+
 TEST_CASE("numeric flags out of range exit 2 with a message a person can read") {
   struct Case {
     const char* args;

@@ -1,7 +1,8 @@
-// Starting PETSc leaves the program's signal handlers alone (solver/linalg/src/mpi.cpp): PETSc installs its own
+// Starting PETSc leaves the program's signal handlers alone (the plugin's start, solver/linalg/src/petsc_plugin.cpp,
+// run by the petsc backend's first solver): PETSc installs its own
 // for SIGTERM, SIGINT, SIGSEGV, SIGFPE, ... unless told -no_signal_handler, and an interrupted solve must reach the
 // output's cleanup (io's AtomicOutput), not PETSc's handler, which prints a stack and aborts.
-#include <throng/linalg/mpi.h>
+#include <throng/linalg/spd_solver.h>
 
 #include <catch2/catch.hpp>
 
@@ -28,7 +29,10 @@ TEST_CASE("starting MPI and PETSc keeps the program's own signal handlers") {
     sigemptyset(&marker.sa_mask);
     sigaction(signals[i], &marker, &before[i]);
   }
-  throng::mpi::ensure_initialized();
+  throng::linalg::SolverOptions options;
+  options.backend = "petsc";
+  const auto solver = throng::linalg::make_spd_solver(options);  // loads the plugin and starts MPI and PETSc
+  REQUIRE(solver->name() == "petsc");
   for (int i = 0; i < 6; ++i) {
     INFO("signal " << signals[i]);
     CHECK(current(signals[i]).sa_handler == marker_handler);

@@ -2,9 +2,7 @@
 #include <throng/linalg/mpi.h>
 
 #include <mpi.h>
-#ifdef THRONG_HAVE_PETSC
-#include "petsc_check.h"
-#endif
+#include "petsc_loader.h"
 
 #include <cstdlib>
 #include <mutex>
@@ -15,7 +13,8 @@ namespace throng::mpi {
 namespace {
 
 bool initialized_by_us = false;   // we called MPI_Init_thread (so we call MPI_Finalize)
-bool petsc_started = false;       // we called PetscInitialize
+const linalg::petsc::Plugin* petsc = nullptr;  // the plugin that started PETSc (start_petsc)
+std::once_flag petsc_once;
 bool finalized = false;
 bool independent_ranks = false;   // PETSc on MPI_COMM_SELF (use_ranks_independently)
 std::once_flag init_once;
@@ -31,9 +30,7 @@ void check(int code, const char* call) {
 void finalize_at_exit() {
   if (finalized) return;
   finalized = true;
-#ifdef THRONG_HAVE_PETSC
-  if (petsc_started) (void)PetscFinalize();
-#endif
+  if (petsc != nullptr) petsc->finish();
   int mpi_finalized = 0;
   MPI_Finalized(&mpi_finalized);
   if (initialized_by_us && !mpi_finalized) MPI_Finalize();
@@ -47,21 +44,6 @@ void initialize() {
     check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
     initialized_by_us = true;
   }
-#ifdef THRONG_HAVE_PETSC
-  PetscBool petsc_up = PETSC_FALSE;
-  PetscInitialized(&petsc_up);
-  if (!petsc_up) {
-    if (independent_ranks) PETSC_COMM_WORLD = MPI_COMM_SELF;
-    // PETSc would otherwise install its own handlers for SIGTERM, SIGINT, SIGSEGV, ... over the program's: an
-    // interrupted solve must reach the output's cleanup (io's AtomicOutput removes its temporary file and
-    // re-raises), not PETSc's handler, which prints a stack and aborts. Options may be set before initialising.
-    if (PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr) != 0)
-      throw NumericalError("PETSc: could not set -no_signal_handler");
-    if (PetscInitializeNoArguments() != 0) throw NumericalError("PETSc: PetscInitialize failed");
-    petsc_started = true;
-    linalg::petsc::install_error_handler();
-  }
-#endif
   std::atexit(finalize_at_exit);
 }
 
@@ -165,14 +147,10 @@ void use_ranks_independently() {
   if (is_initialized() && !independent_ranks) {
     int ranks = 1;
     check(MPI_Comm_size(MPI_COMM_WORLD, &ranks), "MPI_Comm_size");
-#ifdef THRONG_HAVE_PETSC
-    PetscBool petsc_up = PETSC_FALSE;
-    PetscInitialized(&petsc_up);
-    if (petsc_up && ranks > 1) {
+    if (petsc != nullptr && petsc->running() && ranks > 1) {
       throw NumericalError("MPI: PETSc already runs across " + std::to_string(ranks) +
                            " ranks; independent ranks must be asked for before any solve");
     }
-#endif
   }
   independent_ranks = true;
   if (launched_by_mpiexec()) ensure_initialized();
@@ -185,6 +163,17 @@ bool is_initialized() noexcept {
   MPI_Finalized(&done);
   return flag != 0 && done == 0;
 }
+
+#ifdef THRONG_HAVE_PETSC
+void start_petsc(const linalg::petsc::Plugin& plugin) {
+  ensure_initialized();
+  // A start that throws leaves the flag unset: the error goes to this call and the next one tries again.
+  std::call_once(petsc_once, [&] {
+    plugin.start(independent_ranks);
+    petsc = &plugin;
+  });
+}
+#endif
 
 bool has_petsc() noexcept {
 #ifdef THRONG_HAVE_PETSC

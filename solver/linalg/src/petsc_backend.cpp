@@ -50,7 +50,6 @@
 #include "petsc_layout.h"
 
 #include <throng/core/errors.h>
-#include <throng/linalg/mpi.h>
 
 #include <Eigen/QR>
 #include <petscksp.h>
@@ -93,7 +92,6 @@ class PetscSpdSolver final : public SpdSolver {
     if (options_.petsc_prefix.empty() || options_.petsc_prefix.back() != '_') {
       throw ConfigError("solver.petsc_prefix '" + options_.petsc_prefix + "' must end with '_'");
     }
-    mpi::ensure_initialized();
   }
 
   ~PetscSpdSolver() override { destroy(); }
@@ -395,7 +393,9 @@ class PetscSpdSolver final : public SpdSolver {
   }
 
   void destroy() noexcept {
-    if (!mpi::is_initialized()) return;  // PETSc already finalised at exit: nothing left to free
+    PetscBool finalised = PETSC_FALSE;
+    PetscFinalized(&finalised);
+    if (finalised) return;  // PETSc already finalised at exit: nothing left to free
     KSPDestroy(&ksp_);
     VecScatterDestroy(&to_all_);
     VecDestroy(&x_all_);

@@ -1,4 +1,5 @@
 #include "backends.h"
+#include "petsc_loader.h"
 
 #include <throng/core/errors.h>
 
@@ -16,7 +17,9 @@ std::unique_ptr<SpdSolver> make_spd_solver(const SolverOptions& options) {
   if (options.backend == "eigen") return make_eigen_solver(options);
   if (options.backend == "petsc") {
 #ifdef THRONG_HAVE_PETSC
-    return make_petsc_solver(options);
+    const petsc::Plugin& plugin = petsc::loaded_plugin();
+    mpi::start_petsc(plugin);
+    return std::unique_ptr<SpdSolver>(plugin.make_solver(options));
 #else
     throw ConfigError("solver backend 'petsc' was requested but this build has no PETSc (configure with "
                       "-DTHRONG_WITH_PETSC=ON after installing petsc-dev); available: eigen");

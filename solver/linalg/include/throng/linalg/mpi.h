@@ -2,9 +2,10 @@
 // in sight.
 //
 // MPI is initialised once: when something first needs it (the petsc backend, a collective) or at the first
-// query when the process was started by mpiexec/mpirun. When this build has PETSc, PETSc is initialised right
-// after MPI (PETSC_COMM_WORLD = MPI_COMM_WORLD, options from PETSC_OPTIONS). Both are finalised at process exit
-// (std::atexit): objects holding PETSc handles must be destroyed before main returns.
+// query when the process was started by mpiexec/mpirun. PETSc (a plugin, linalg/src/petsc_plugin.h) is started
+// by the first solver of the petsc backend, right after MPI (PETSC_COMM_WORLD = MPI_COMM_WORLD, options from
+// PETSC_OPTIONS). Both are finalised at process exit (std::atexit), PETSc first: objects holding PETSc handles
+// must be destroyed before main returns.
 //
 // A process not started by mpiexec that never asks for MPI never initialises it: rank() is 0 and size() 1.
 // Collectives must be called by every rank in the same order (SPMD).
@@ -22,8 +23,8 @@ namespace throng::mpi {
 /// PMI). Does not initialise anything.
 [[nodiscard]] bool launched_by_mpiexec() noexcept;
 
-/// Initialises MPI (thread level "funneled": only the main thread calls MPI) and PETSc if built, once;
-/// later calls do nothing. Throws NumericalError if MPI or PETSc fails to start.
+/// Initialises MPI (thread level "funneled": only the main thread calls MPI), once; later calls do nothing.
+/// Throws NumericalError if MPI fails to start. (PETSc starts with the petsc backend's first solver.)
 void ensure_initialized();
 
 /// For farms that give each rank its own work (`throng run` with several jobs): initialises MPI when launched
@@ -35,7 +36,7 @@ void use_ranks_independently();
 /// True once ensure_initialized() has run (and finalisation has not).
 [[nodiscard]] bool is_initialized() noexcept;
 
-/// True when this build has the PETSc backend.
+/// True when this build has the PETSc backend (its plugin is loaded when a solve asks for it).
 [[nodiscard]] bool has_petsc() noexcept;
 
 /// This process's rank in MPI_COMM_WORLD and the number of ranks. Initialises MPI first when launched by
