@@ -4,6 +4,8 @@
 // output's cleanup (io's AtomicOutput), not PETSc's handler, which prints a stack and aborts.
 #include <throng/linalg/spd_solver.h>
 
+#include "petsc_loader.h"
+
 #include <catch2/catch.hpp>
 
 #include <csignal>
@@ -29,6 +31,7 @@ TEST_CASE("starting MPI and PETSc keeps the program's own signal handlers") {
     sigemptyset(&marker.sa_mask);
     sigaction(signals[i], &marker, &before[i]);
   }
+  REQUIRE_FALSE(throng::linalg::petsc::loaded_plugin().running());  // PETSc starts below, not before
   throng::linalg::SolverOptions options;
   options.backend = "petsc";
   const auto solver = throng::linalg::make_spd_solver(options);  // loads the plugin and starts MPI and PETSc

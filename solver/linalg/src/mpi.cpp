@@ -30,7 +30,6 @@ void check(int code, const char* call) {
 void finalize_at_exit() {
   if (finalized) return;
   finalized = true;
-  if (petsc != nullptr) petsc->finish();
   int mpi_finalized = 0;
   MPI_Finalized(&mpi_finalized);
   if (initialized_by_us && !mpi_finalized) MPI_Finalize();
@@ -44,6 +43,9 @@ void initialize() {
     check(MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
     initialized_by_us = true;
   }
+  // Errors come back as codes, which check() turns into NumericalError (exit 5), instead of aborting every rank
+  // (MPI's default). PETSc's start used to set this, when PETSc started with MPI.
+  check(MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN), "MPI_Comm_set_errhandler");
   std::atexit(finalize_at_exit);
 }
 
@@ -171,6 +173,11 @@ void start_petsc(const linalg::petsc::Plugin& plugin) {
   std::call_once(petsc_once, [&] {
     plugin.start(independent_ranks);
     petsc = &plugin;
+    // Registered after MPI's finalisation, so it runs before it (exit runs them newest first), and after the
+    // plugin's libraries were loaded, so before their own static destructors.
+    std::atexit([] {
+      if (petsc != nullptr) petsc->finish();
+    });
   });
 }
 #endif

@@ -4,6 +4,7 @@
 
 #include <dlfcn.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <system_error>
@@ -20,7 +21,11 @@ std::vector<std::filesystem::path> candidates() {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
   if (!error) paths.push_back(self.parent_path() / plugin_file);
 #ifdef THRONG_PETSC_PLUGIN_PATH
-  paths.emplace_back(THRONG_PETSC_PLUGIN_PATH);
+  // Once: for throng-main in the build, both are the same file.
+  const std::filesystem::path built = THRONG_PETSC_PLUGIN_PATH;
+  if (paths.empty() || std::filesystem::weakly_canonical(paths[0], error) != std::filesystem::weakly_canonical(built, error)) {
+    paths.push_back(built);
+  }
 #endif
   return paths;
 }
@@ -42,7 +47,8 @@ const Plugin& load_plugin(const std::vector<std::filesystem::path>& paths) {
     }
     const auto entry = reinterpret_cast<ThrongPetscPluginEntry>(::dlsym(handle, "throng_petsc_plugin"));
     const Plugin* plugin = entry != nullptr ? entry() : nullptr;
-    if (plugin == nullptr || plugin->abi != plugin_abi || plugin->options_size != sizeof(SolverOptions)) {
+    if (plugin == nullptr || std::strcmp(plugin->token, THRONG_PETSC_PLUGIN_TOKEN) != 0 ||
+        plugin->options_size != sizeof(SolverOptions)) {
       tried += (tried.empty() ? "" : "; ") + path.string() + ": not this build's plugin";
       continue;  // left loaded: unloading a library that may have started threads or handlers is not safe
     }

@@ -1,5 +1,5 @@
-// The program's side of petsc_plugin.h (built with PETSc only): finding and loading the plugin, and starting
-// PETSc through it.
+// The program's side of petsc_plugin.h: finding and loading the plugin, and starting PETSc through it (defined in
+// builds with PETSc only).
 #pragma once
 
 #include "petsc_plugin.h"
@@ -9,7 +9,8 @@
 
 namespace throng::linalg::petsc {
 
-/// The first of `paths` that dlopen loads and that is this build's plugin, kept loaded to the process's end.
+/// The first of `paths` that dlopen loads and that is this build's plugin (its token and sizeof(SolverOptions)),
+/// kept loaded to the process's end.
 /// ConfigError naming each path tried and why it failed (dlopen's own message, or "not this build's plugin").
 [[nodiscard]] const Plugin& load_plugin(const std::vector<std::filesystem::path>& paths);
 

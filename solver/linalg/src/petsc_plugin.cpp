@@ -44,7 +44,7 @@ bool running() {
 
 SpdSolver* make_solver(const SolverOptions& options) { return make_petsc_solver(options).release(); }
 
-constexpr Plugin plugin{plugin_abi, sizeof(SolverOptions), start, finish, running, make_solver};
+constexpr Plugin plugin{THRONG_PETSC_PLUGIN_TOKEN, sizeof(SolverOptions), start, finish, running, make_solver};
 
 }  // namespace
 }  // namespace throng::linalg::petsc

@@ -18,9 +18,11 @@
 
 namespace throng::linalg::petsc {
 
-/// What the plugin gives the program. `abi` is plugin_abi; a plugin from another build says otherwise.
+/// What the plugin gives the program. `token` is the build's THRONG_PETSC_PLUGIN_TOKEN (solver/linalg/CMakeLists.txt:
+/// a hash of the headers both sides share and of the compiler), so that a plugin of another build (a stale copy
+/// beside a newer throng-main) is refused rather than called.
 struct Plugin {
-  int abi;
+  const char* token;
   std::size_t options_size;  ///< sizeof(SolverOptions) where the plugin was built
   /// Starts PETSc on the initialised MPI, on PETSC_COMM_WORLD = MPI_COMM_SELF when `independent_ranks` (else
   /// MPI_COMM_WORLD), without PETSc's signal handlers; nothing when it runs. NumericalError when PETSc fails.
@@ -32,8 +34,6 @@ struct Plugin {
   /// The backend's solver (PETSc must run). ConfigError for bad options.
   SpdSolver* (*make_solver)(const SolverOptions& options);
 };
-
-constexpr int plugin_abi = 1;
 
 /// The plugin's file name; the program looks for it beside its own executable, then where the build made it.
 constexpr const char* plugin_file = "libthrong_petsc.so";

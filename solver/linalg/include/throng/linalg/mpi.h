@@ -2,10 +2,10 @@
 // in sight.
 //
 // MPI is initialised once: when something first needs it (the petsc backend, a collective) or at the first
-// query when the process was started by mpiexec/mpirun. PETSc (a plugin, linalg/src/petsc_plugin.h) is started
-// by the first solver of the petsc backend, right after MPI (PETSC_COMM_WORLD = MPI_COMM_WORLD, options from
-// PETSC_OPTIONS). Both are finalised at process exit (std::atexit), PETSc first: objects holding PETSc handles
-// must be destroyed before main returns.
+// query when the process was started by mpiexec/mpirun; MPI errors then come back as NumericalError. PETSc (a
+// plugin, linalg/src/petsc_plugin.h) is started by the first solver of the petsc backend, after MPI
+// (PETSC_COMM_WORLD = MPI_COMM_WORLD, options from PETSC_OPTIONS). Both are finalised at process exit
+// (std::atexit), PETSc first: objects holding PETSc handles must be destroyed before main returns.
 //
 // A process not started by mpiexec that never asks for MPI never initialises it: rank() is 0 and size() 1.
 // Collectives must be called by every rank in the same order (SPMD).
@@ -28,8 +28,8 @@ namespace throng::mpi {
 void ensure_initialized();
 
 /// For farms that give each rank its own work (`throng run` with several jobs): initialises MPI when launched
-/// by mpiexec, and PETSc on this rank alone (PETSC_COMM_WORLD = MPI_COMM_SELF), so the petsc backend's solves
-/// never wait for other ranks. Must come before anything else starts PETSc; throws NumericalError when PETSc
+/// by mpiexec, and makes PETSc, when a solve starts it, run on this rank alone (PETSC_COMM_WORLD = MPI_COMM_SELF),
+/// so the petsc backend's solves never wait for other ranks. Must come before anything else starts PETSc; throws NumericalError when PETSc
 /// already runs across several ranks. rank(), size() and the collectives still span every rank.
 void use_ranks_independently();
 

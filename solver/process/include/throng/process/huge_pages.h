@@ -9,7 +9,7 @@
 // sees it set and goes on), before anything else has run. The `throng` program avoids that second start: what
 // runs as `throng` is a launcher of 27 KB (drivers/launcher.cpp) that calls ask_for_huge_pages() and
 // executes the program itself, throng-main beside it, once; a restart there would have loaded and relocated its
-// 113 shared libraries twice (`throng --version`: 0.15-0.20 s with the restart, 0.07-0.10 s without). Measured on the 1,000-agent iterative precompute
+// shared libraries twice (113 then, PETSc's among them: the petsc backend is now a plugin) (`throng --version`: 0.15-0.20 s with the restart, 0.07-0.10 s without). Measured on the 1,000-agent iterative precompute
 // (bench_edit, paired, load 3): minor faults 350,000 -> 40,000, CPU 10.5 -> 9.4 s. Memory layout does not
 // change any result.
 //
