@@ -175,9 +175,7 @@ void start_petsc(const linalg::petsc::Plugin& plugin) {
     petsc = &plugin;
     // Registered after MPI's finalisation, so it runs before it (exit runs them newest first), and after the
     // plugin's libraries were loaded, so before their own static destructors.
-    std::atexit([] {
-      if (petsc != nullptr) petsc->finish();
-    });
+    std::atexit([] { petsc->finish(); });
   });
 }
 #endif

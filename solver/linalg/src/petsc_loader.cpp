@@ -23,7 +23,8 @@ std::vector<std::filesystem::path> candidates() {
 #ifdef THRONG_PETSC_PLUGIN_PATH
   // Once: for throng-main in the build, both are the same file.
   const std::filesystem::path built = THRONG_PETSC_PLUGIN_PATH;
-  if (paths.empty() || std::filesystem::weakly_canonical(paths[0], error) != std::filesystem::weakly_canonical(built, error)) {
+  if (paths.empty() ||
+      std::filesystem::weakly_canonical(paths[0], error) != std::filesystem::weakly_canonical(built, error)) {
     paths.push_back(built);
   }
 #endif

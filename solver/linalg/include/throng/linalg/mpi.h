@@ -29,8 +29,9 @@ void ensure_initialized();
 
 /// For farms that give each rank its own work (`throng run` with several jobs): initialises MPI when launched
 /// by mpiexec, and makes PETSc, when a solve starts it, run on this rank alone (PETSC_COMM_WORLD = MPI_COMM_SELF),
-/// so the petsc backend's solves never wait for other ranks. Must come before anything else starts PETSc; throws NumericalError when PETSc
-/// already runs across several ranks. rank(), size() and the collectives still span every rank.
+/// so the petsc backend's solves never wait for other ranks. Must come before anything else starts PETSc; throws
+/// NumericalError when PETSc already runs across several ranks. rank(), size() and the collectives still span
+/// every rank.
 void use_ranks_independently();
 
 /// True once ensure_initialized() has run (and finalisation has not).
