@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace throng::h5::detail {
@@ -140,6 +141,48 @@ constexpr std::size_t reused_chunk_bytes = 1024 * 1024;
 // (a frame of 1,000,000 agents: 8 MB) are made per group, so that no thread keeps them for the process's life.
 constexpr std::size_t kept_shuffled_bytes = 4 * 1024 * 1024;
 
+// Compressed chunks' buffers, kept for the next groups and calls. Made per chunk and freed once written, their
+// pages went back to the kernel (glibc trims a thread's heap) and were faulted in again block after block: perf of
+// bench_sketch_command at 10,000 agents put 24 % of the command's page faults in deflate's first writes to them.
+// Buffers of up to kept_packed_bytes, at most kept_packed_count of them (a block's groups in flight), are kept for
+// the process's life (at 10,000 agents about 64 × 80 KB, 5 MB; 64 MiB at most).
+constexpr std::size_t kept_packed_bytes = 1024 * 1024;
+constexpr std::size_t kept_packed_count = 64;
+
+class PackedPool {
+ public:
+  PackedPool() { kept_.reserve(kept_packed_count); }  // give() then never allocates (it runs in destructors)
+  // A buffer of at least `bytes` bytes (uninitialised), and its size.
+  std::pair<AlignedBytes, std::size_t> take(std::size_t bytes) {
+    {
+      std::lock_guard lock(mutex_);
+      for (std::size_t i = kept_.size(); i-- > 0;) {
+        if (kept_[i].second >= bytes) {
+          auto found = std::move(kept_[i]);
+          kept_.erase(kept_.begin() + static_cast<std::ptrdiff_t>(i));
+          return found;
+        }
+      }
+    }
+    return {aligned_bytes(bytes), bytes};
+  }
+  // Keeps `buffer` (of `bytes` bytes) for a later take, or frees it.
+  void give(AlignedBytes buffer, std::size_t bytes) noexcept {
+    if (!buffer || bytes > kept_packed_bytes) return;
+    std::lock_guard lock(mutex_);
+    if (kept_.size() < kept_packed_count) kept_.emplace_back(std::move(buffer), bytes);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::pair<AlignedBytes, std::size_t>> kept_;
+};
+
+PackedPool& packed_pool() {
+  static PackedPool pool;
+  return pool;
+}
+
 ThreadBuffers& thread_buffers(int level) {
   thread_local ThreadBuffers buffers;
   if (!buffers.deflater || buffers.level != level) {
@@ -244,14 +287,28 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
-    std::vector<AlignedBytes> packed;  // each out_bytes long, size[k] of them the stream
-    std::vector<std::size_t> size;
+    std::vector<AlignedBytes> packed;  // from packed_pool, each room[k] long, size[k] of them the stream
+    std::vector<std::size_t> room, size;
+    Group() = default;
+    Group(const Group&) = delete;
+    Group& operator=(const Group&) = delete;
+    ~Group() {
+      for (std::size_t k = 0; k < packed.size(); ++k) packed_pool().give(std::move(packed[k]), room[k]);
+    }
+    // Chunk k's buffer, of at least `bytes` bytes.
+    unsigned char* make_room(std::size_t k, std::size_t bytes) {
+      auto [buffer, got] = packed_pool().take(bytes);
+      packed[k] = std::move(buffer);
+      room[k] = got;
+      return packed[k].get();
+    }
   };
   const auto compress = [&](Group& group) {
     ThreadBuffers& buffers = thread_buffers(layout.level);
     std::unique_ptr<unsigned char[]> own;
     unsigned char* const shuffled = transposed ? shuffled_room(buffers, chunk_bytes, own) : nullptr;
     group.packed.resize(group.count);
+    group.room.assign(group.count, 0);
     group.size.assign(group.count, 0);
     std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
     std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
@@ -265,7 +322,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       const bool reusable = C == 1 && chunk_bytes <= reused_chunk_bytes;
       if (reusable && buffers.last_chunk.size() == chunk_bytes && buffers.last_element_size == layout.element_size &&
           buffers.last_row_elements == row_elements && std::memcmp(buffers.last_chunk.data(), chunk, chunk_bytes) == 0) {
-        group.packed[k] = aligned_bytes(out_bytes);
+        group.make_room(k, out_bytes);
         std::memcpy(group.packed[k].get(), buffers.last_stream.data(), buffers.last_stream.size());
         group.size[k] = buffers.last_stream.size();
         continue;
@@ -275,7 +332,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       if (C > 1 && zero_component(chunk + component * layout.element_size, chunk_bytes / layout.element_size,
                                   layout.element_size, C * layout.element_size)) {
         int status = 0;
-        group.packed[k] = aligned_bytes(out_bytes);
+        group.make_room(k, out_bytes);
         group.size[k] = buffers.deflater->deflate_zeros(chunk_bytes, group.packed[k].get(), out_bytes, &status);
         if (group.size[k] == 0) not_deflated(where, group.first + k, status);
         continue;
@@ -291,7 +348,7 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
       // before it is read; aligned for the file driver's direct writes, direct_write_driver.h, so a chunk of 1 MiB
       // or more goes to the disk without a copy into the page cache).
       int status = 0;
-      group.packed[k] = aligned_bytes(out_bytes);
+      group.make_room(k, out_bytes);
       const PlaneCodes* plane_codes = component < codes.by_component.size() ? codes.by_component[component].get() : nullptr;
       group.size[k] = buffers.deflater->deflate(chunk, chunk_bytes, layout.element_size, row_elements,
                                                 group.packed[k].get(), out_bytes, &status, plane_codes);
