@@ -142,26 +142,32 @@ constexpr std::size_t reused_chunk_bytes = 1024 * 1024;
 constexpr std::size_t kept_shuffled_bytes = 4 * 1024 * 1024;
 
 // Compressed chunks' buffers, kept for the next groups and calls. Made per chunk and freed once written, their
-// pages went back to the kernel (glibc trims a thread's heap) and were faulted in again block after block: perf of
-// bench_sketch_command at 10,000 agents put 24 % of the command's page faults in deflate's first writes to them.
-// Buffers of up to kept_packed_bytes, at most kept_packed_count of them (a block's groups in flight), are kept for
-// the process's life (at 10,000 agents about 64 × 80 KB, 5 MB; 64 MiB at most).
+// pages went back to the kernel (glibc gives back what is free at the top of a thread's heap, and maps large
+// buffers on their own) and were faulted in again block after block: perf of bench_sketch_command at 10,000 agents
+// put 24 % of the command's page faults in deflate's first writes to them. Buffers of up to kept_packed_bytes, at
+// most kept_packed_count of them (about the chunks of the groups in flight), are kept for the process's life: at
+// 10,000 agents 80 KB (a component's chunk) or 240 KB (ids, actions) each, at 100,000 agents about 800 KB.
 constexpr std::size_t kept_packed_bytes = 1024 * 1024;
-constexpr std::size_t kept_packed_count = 64;
+constexpr std::size_t kept_packed_count = groups_in_flight * group_chunks;
 
 class PackedPool {
  public:
   PackedPool() { kept_.reserve(kept_packed_count); }  // give() then never allocates (it runs in destructors)
-  // A buffer of at least `bytes` bytes (uninitialised), and its size.
+
+  // A buffer of at least `bytes` bytes, and its size: the smallest kept one that is large enough (holding an earlier
+  // stream), or a new one (uninitialised).
   std::pair<AlignedBytes, std::size_t> take(std::size_t bytes) {
-    {
+    if (bytes <= kept_packed_bytes) {
       std::lock_guard lock(mutex_);
-      for (std::size_t i = kept_.size(); i-- > 0;) {
-        if (kept_[i].second >= bytes) {
-          auto found = std::move(kept_[i]);
-          kept_.erase(kept_.begin() + static_cast<std::ptrdiff_t>(i));
-          return found;
-        }
+      std::size_t best = kept_.size();
+      for (std::size_t i = 0; i < kept_.size(); ++i) {
+        if (kept_[i].second >= bytes && (best == kept_.size() || kept_[i].second < kept_[best].second)) best = i;
+      }
+      if (best < kept_.size()) {
+        auto found = std::move(kept_[best]);
+        kept_[best] = std::move(kept_.back());
+        kept_.pop_back();
+        return found;
       }
     }
     return {aligned_bytes(bytes), bytes};
@@ -287,13 +293,16 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
   // A group of consecutive chunks, compressed: chunk first + k's stream in packed[k].
   struct Group {
     std::uint64_t first = 0, count = 0;
-    std::vector<AlignedBytes> packed;  // from packed_pool, each room[k] long, size[k] of them the stream
+    std::vector<AlignedBytes> packed;  // from packed_pool, each room[k] long; the first size[k] bytes are the stream
     std::vector<std::size_t> room, size;
     Group() = default;
     Group(const Group&) = delete;
     Group& operator=(const Group&) = delete;
     ~Group() {
-      for (std::size_t k = 0; k < packed.size(); ++k) packed_pool().give(std::move(packed[k]), room[k]);
+      const std::size_t made = std::min(packed.size(), room.size());
+      for (std::size_t k = 0; k < made; ++k) {
+        if (packed[k]) packed_pool().give(std::move(packed[k]), room[k]);
+      }
     }
     // Chunk k's buffer, of at least `bytes` bytes.
     unsigned char* make_room(std::size_t k, std::size_t bytes) {
@@ -307,8 +316,8 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
     ThreadBuffers& buffers = thread_buffers(layout.level);
     std::unique_ptr<unsigned char[]> own;
     unsigned char* const shuffled = transposed ? shuffled_room(buffers, chunk_bytes, own) : nullptr;
-    group.packed.resize(group.count);
     group.room.assign(group.count, 0);
+    group.packed.resize(group.count);
     group.size.assign(group.count, 0);
     std::vector<unsigned char> padded;  // the edge chunk's rows, padded once for all its components
     std::uint64_t padded_row0 = std::numeric_limits<std::uint64_t>::max();
@@ -344,9 +353,10 @@ void filter_chunks(const std::byte* data, const ChunkedLayout& layout, const std
         chunk = shuffled;
       }
       // The shuffled chunk's byte planes (one of a chunk that is not shuffled), an element's value one row earlier
-      // row_elements bytes back in its plane; deflated straight into the group's buffer (uninitialised: written
-      // before it is read; aligned for the file driver's direct writes, direct_write_driver.h, so a chunk of 1 MiB
-      // or more goes to the disk without a copy into the page cache).
+      // row_elements bytes back in its plane; deflated straight into the group's buffer (new and uninitialised, or
+      // holding an earlier stream: only the first size[k] bytes, written here, are read; aligned for the file
+      // driver's direct writes, direct_write_driver.h, so a chunk of 1 MiB or more goes to the disk without a copy
+      // into the page cache).
       int status = 0;
       group.make_room(k, out_bytes);
       const PlaneCodes* plane_codes = component < codes.by_component.size() ? codes.by_component[component].get() : nullptr;
