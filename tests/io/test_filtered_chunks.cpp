@@ -357,3 +357,33 @@ TEST_CASE("a dataset filtered block by block with its codes kept is the dataset 
   CHECK(fresh != whole);
   CHECK(std::equal(fresh.begin(), fresh.begin() + 9, whole.begin()));
 }
+
+TEST_CASE("chunks compressed into buffers that held other streams are the bytes they were the first time") {
+  // The compressed chunks' buffers are kept from call to call (filtered_chunks.cpp's PackedPool): a second call
+  // compresses into buffers that held the first call's streams. Here noise (streams as long as their chunks) is
+  // filtered between two filterings of a walk, on 1 and 2 threads: the walk's chunks come back the same bytes.
+  const std::vector<double> walk_values = walk();
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> any(-1e6, 1e6);
+  std::vector<double> noise(walk_values.size());
+  for (double& v : noise) v = any(random);
+  const h5::detail::ChunkedLayout layout{8, 5000 * 3 * sizeof(double), 1, sizeof(double), 1, 3};
+  using Chunks = std::vector<std::pair<std::pair<std::uint64_t, std::uint64_t>, std::vector<unsigned char>>>;
+  const auto filter = [&](const std::vector<double>& values) {
+    Chunks out;
+    h5::detail::filter_chunks(reinterpret_cast<const std::byte*>(values.data()), layout, "test",
+                              [&](std::uint64_t row, std::uint64_t component, const unsigned char* bytes, std::size_t size) {
+                                out.push_back({{row, component}, std::vector<unsigned char>(bytes, bytes + size)});
+                              });
+    return out;
+  };
+  const Chunks first = filter(walk_values);
+  REQUIRE(first.size() == 24);
+  for (const std::size_t threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    const Chunks between = filter(noise);
+    REQUIRE(between.size() == 24);
+    CHECK(between[0].second.size() > first[0].second.size());  // longer streams went through the buffers
+    CHECK(filter(walk_values) == first);
+  }
+}
